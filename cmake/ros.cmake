@@ -1,0 +1,1 @@
+# ROS layer targets (nodelet, node, rostests).

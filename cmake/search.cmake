@@ -1,0 +1,18 @@
+# The search core: algorithms only; depends on neither ROS nor OpenCV.
+add_library(amha_search
+  src/search/planner_config.cpp
+  src/search/search_base.cpp
+  src/search/mha_engine.cpp
+  src/search/ana_star.cpp
+  src/search/planner_factory.cpp
+)
+target_include_directories(amha_search PUBLIC
+  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
+
+amha_add_gtest(amha_search_tests
+  SOURCES
+    test/search/test_graphs.cpp
+    test/search/indexed_heap_test.cpp
+    test/search/optimality_test.cpp
+    test/search/limits_test.cpp
+  LIBS amha_search)

@@ -1,0 +1,1 @@
+# Filled in by the tiles work (see issues).

@@ -1,0 +1,110 @@
+// What every algorithm takes (limits, parameters) and gives back (solutions, a final status).
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "amha_planner/search/problem.h"
+#include "amha_planner/search/types.h"
+
+namespace amha {
+
+enum class Algorithm { kAmhaStar, kMhaStar, kAraStar, kAnaStar, kWeightedAStar, kAStar };
+
+/// "amha", "mha", "ara", "ana", "wastar", "astar".
+const char* algorithmName(Algorithm a);
+/// Parses the names above; returns false for anything else.
+bool parseAlgorithm(const std::string& name, Algorithm* out);
+
+enum class SearchStatus {
+  kProvenOptimal,   ///< the last solution is optimal (bound 1 reached or certified)
+  kBoundReached,    ///< a one-shot algorithm (MHA*, weighted A*) met its requested bound
+  kTimeLimit,       ///< wall-clock budget used up (a solution may exist)
+  kExpansionLimit,  ///< expansion cap hit
+  kMemoryLimit,     ///< state or memory cap hit
+  kCancelled,       ///< the cancel flag was set
+  kNoSolution,      ///< the search space was exhausted: the goal is unreachable
+};
+const char* statusName(SearchStatus s);
+
+/// Limits every search honours. The time budget is measured on std::chrono::steady_clock and,
+/// with the cancel flag, checked often enough to be honoured within a few milliseconds.
+struct SearchLimits {
+  double time_limit_s = std::numeric_limits<double>::infinity();
+  std::uint64_t max_expansions = std::numeric_limits<std::uint64_t>::max();
+  std::size_t max_states = std::numeric_limits<std::size_t>::max();
+  std::size_t max_memory_bytes = std::numeric_limits<std::size_t>::max();
+  const std::atomic<bool>* cancel = nullptr;  ///< set to true from any thread to stop
+};
+
+/// Parameters. A-MHA* uses all of them; the others read what applies:
+///  - MHA*: w1, w2 (one ImprovePath, no schedule);
+///  - ARA*: w1 is epsilon, dw1 its decrement (w2 = 1, no inadmissible heuristics);
+///  - weighted A*: w1 is the weight; A*: none.
+struct PlannerConfig {
+  Algorithm algorithm = Algorithm::kAmhaStar;
+  double w1 = 5.0;   ///< anchor inflation (initial)
+  double w2 = 5.0;   ///< inadmissible-vs-anchor factor (initial); bound is w1 * w2 = 25
+  double dw1 = 0.5;  ///< decrement of w1 per iteration
+  double dw2 = 0.5;  ///< decrement of w2 per iteration
+  /// Use at most this many inadmissible heuristics of the problem (all by default).
+  std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
+  /// Stop as soon as the certified bound proves the current solution optimal, instead of
+  /// running the remaining iterations down to w = 1.
+  bool stop_when_certified_optimal = true;
+  /// Check the algorithm's queue invariants at every iteration (slow; for tests).
+  bool check_invariants = false;
+};
+
+/// One improved solution, reported as soon as it is found.
+struct Solution {
+  std::vector<StateId> path;  ///< start ... goal
+  Cost cost = kInfiniteCost;  ///< the sum of the path's edge costs
+  /// The bound the algorithm guarantees by construction: w1*w2 (A-MHA*, MHA*), epsilon (ARA*,
+  /// weighted A*), ANA*'s E (infinite before its first bound), 1 for A*.
+  double nominal_bound = std::numeric_limits<double>::infinity();
+  /// cost / (a proven lower bound on the optimal cost), clamped to [1, nominal_bound].
+  double certified_bound = std::numeric_limits<double>::infinity();
+  double elapsed_s = 0.0;
+  std::uint64_t expansions = 0;
+  int iteration = 0;  ///< 0-based ImprovePath iteration that produced it
+  double w1 = 1.0;    ///< weights in force (epsilon in w1 for ARA*/weighted A*; 1 for A*/ANA*)
+  double w2 = 1.0;
+};
+
+using SolutionCallback = std::function<void(const Solution&)>;
+
+struct SearchResult {
+  SearchStatus status = SearchStatus::kNoSolution;
+  std::vector<Solution> solutions;  ///< every reported solution, in order; back() is the best
+  std::uint64_t expansions = 0;
+  std::size_t peak_states = 0;      ///< states generated (with search data) at the end
+  std::size_t peak_memory_bytes = 0;  ///< search arrays + domain, as counted for the cap
+  double elapsed_s = 0.0;
+
+  bool hasSolution() const { return !solutions.empty(); }
+  const Solution& best() const { return solutions.back(); }
+};
+
+/// An algorithm instance. A planner may be reused for several searches (its buffers are kept).
+class Planner {
+ public:
+  virtual ~Planner() = default;
+  virtual SearchResult search(SearchProblem& problem, const SearchLimits& limits,
+                              const SolutionCallback& on_solution = {}) = 0;
+};
+
+/// Makes the planner for config.algorithm. Throws std::invalid_argument for weights < 1 or
+/// non-finite, or negative decrements.
+std::unique_ptr<Planner> makePlanner(const PlannerConfig& config);
+
+/// Presets that reproduce the paper's settings for `algorithm` (documented in the README).
+PlannerConfig defaultConfig(Algorithm algorithm);
+
+}  // namespace amha

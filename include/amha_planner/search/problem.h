@@ -1,0 +1,39 @@
+// The interface between search algorithms and domains (tiles, lattice, test graphs).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "amha_planner/search/types.h"
+
+namespace amha {
+
+/// A search problem with one start, one goal state, successors with costs, and heuristics:
+/// heuristic 0 is the anchor (admissible and consistent), 1..N are arbitrary (inadmissible).
+///
+/// One virtual call per expansion (successors) and one per newly generated state (heuristics)
+/// keeps the interface cheap; the search caches heuristic values, so a domain computes each
+/// state's heuristics once.
+class SearchProblem {
+ public:
+  virtual ~SearchProblem() = default;
+
+  virtual StateId start() const = 0;
+  virtual StateId goal() const = 0;
+
+  /// Replaces the contents of `out` with the successors of `s`. May create new state ids
+  /// (dense, in discovery order). Must not allocate once `out` has grown to the branching factor.
+  virtual void successors(StateId s, std::vector<Edge>& out) = 0;
+
+  /// Number of heuristics, anchor included (N + 1 >= 1).
+  virtual std::size_t numHeuristics() const = 0;
+
+  /// Writes h_0(s) .. h_{count-1}(s) into `h` (count <= numHeuristics()). h_0(goal) must be 0.
+  virtual void heuristics(StateId s, HeuristicValue* h, std::size_t count) = 0;
+
+  /// Bytes the domain holds for its states (hash tables, state storage); counted against the
+  /// search's memory cap together with the search's own arrays.
+  virtual std::size_t memoryBytes() const { return 0; }
+};
+
+}  // namespace amha

@@ -1,0 +1,237 @@
+#include "mha_engine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace amha {
+namespace detail {
+
+std::size_t MhaEngine::engineBytes() const {
+  std::size_t bytes = h_.capacity() * sizeof(HeuristicValue) + flags_.capacity() +
+                      incons_.capacity() * sizeof(StateId);
+  for (const auto& q : open_) bytes += q.memoryBytes();
+  return bytes;
+}
+
+void MhaEngine::growArrays(std::size_t cap) {
+  h_.resize(cap * nh_, 0);
+  flags_.resize(cap, 0);
+  for (auto& q : open_) q.reserveIds(cap);
+}
+
+void MhaEngine::resetArrays(std::size_t used) {
+  std::fill(flags_.begin(), flags_.begin() + std::min(used, flags_.size()), 0);
+  for (auto& q : open_) q.clear();
+  incons_.clear();
+}
+
+SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
+                            const SolutionCallback& on_solution) {
+  const std::size_t nh = 1 + std::min(opt_.max_inadmissible, problem.numHeuristics() - 1);
+  if (nh != nh_ || open_.size() != nh) {
+    // A different heuristic count changes the array layout: start from empty arrays.
+    nh_ = nh;
+    open_.assign(nh_, IndexedHeap<MhaKey>());
+    h_.clear();
+    flags_.clear();
+    g_.clear();
+    parent_.clear();
+    capacity_ = 0;
+    used_ = 0;
+  }
+  begin(problem, limits, &on_solution);
+  hbuf_.resize(nh_);
+  w1_ = opt_.w1;
+  w2_ = opt_.w2;
+  iteration_ = 0;
+  round_robin_ = 0;
+
+  const StateId start = problem.start();
+  const StateId goal = problem.goal();
+  if (!ensure(start) || !ensure(goal) || !generate(start) || !generate(goal)) {
+    finish(SearchStatus::kMemoryLimit);
+    return std::move(result_);
+  }
+  g_[start] = 0;
+  if (h(start, 0) != kInfiniteHeuristic) {
+    const MhaKey k0 = key(start, 0);
+    open_[0].push(start, k0);
+    for (std::size_t i = 1; i < nh_; ++i) {
+      if (admits(start, i, k0.f)) open_[i].push(start, key(start, i));
+    }
+  }
+
+  SearchStatus status = SearchStatus::kNoSolution;
+  for (;;) {
+    if (opt_.check_invariants) checkInvariants();
+    if (!improvePath()) {
+      status = stop_;
+      break;
+    }
+    if (g_[goal] >= kInfiniteCost) {  // OPEN_0 ran empty: nothing reaches the goal
+      status = SearchStatus::kNoSolution;
+      break;
+    }
+    const double nominal = w1_ * w2_;
+    const Cost lb = lowerBound();
+    report(nominal, lb, iteration_, w1_, w2_);
+    const bool certified_optimal = result_.solutions.back().certified_bound <= 1.0;
+    if ((w1_ <= 1.0 && w2_ <= 1.0) || (certified_optimal && opt_.stop_when_certified_optimal)) {
+      status = SearchStatus::kProvenOptimal;
+      break;
+    }
+    if (!opt_.anytime) {
+      status = certified_optimal ? SearchStatus::kProvenOptimal : SearchStatus::kBoundReached;
+      break;
+    }
+    w1_ = std::max(w1_ - opt_.dw1, 1.0);
+    w2_ = std::max(w2_ - opt_.dw2, 1.0);
+    ++iteration_;
+    prepareNextIteration();
+    if (slowLimitCheck()) {
+      status = stop_;
+      break;
+    }
+  }
+  finish(status);
+  return std::move(result_);
+}
+
+bool MhaEngine::generate(StateId s) {
+  if (flags_[s] & kGenerated) return true;
+  problem_->heuristics(s, hbuf_.data(), nh_);
+  std::copy(hbuf_.begin(), hbuf_.end(), h_.begin() + static_cast<std::ptrdiff_t>(s * nh_));
+  flags_[s] |= kGenerated;
+  ++generated_;
+  return true;
+}
+
+bool MhaEngine::improvePath() {
+  const StateId goal = problem_->goal();
+  const std::size_t n_inad = nh_ - 1;
+  for (;;) {
+    if (open_[0].empty()) return true;
+    const double min0 = open_[0].top().key.f;
+    // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min().
+    if (static_cast<double>(g_[goal]) <= w2_ * min0) return true;
+    if (limitHit()) return false;
+    std::size_t q = 0;
+    if (n_inad > 0) {
+      const std::size_t i = 1 + round_robin_;
+      round_robin_ = (round_robin_ + 1) % n_inad;
+      if (!open_[i].empty() && open_[i].top().key.f <= w2_ * min0) q = i;
+    }
+    const StateId s = open_[q].top().id;
+    expand(s, q);
+    flags_[s] |= (q == 0) ? kClosedAnch : kClosedInad;
+  }
+}
+
+void MhaEngine::expand(StateId s, std::size_t queue) {
+  for (auto& q : open_) q.remove(s);
+  ++expansions_;
+  if (observer_) observer_(s, queue, iteration_);
+  problem_->successors(s, succ_);
+  const Cost gs = g_[s];
+  for (const Edge& e : succ_) {
+    const StateId t = e.to;
+    const Cost ng = gs + e.cost;
+    if (t >= capacity_ || !(flags_[t] & kGenerated)) {
+      if (!ensure(t)) return;  // memory cap: the caller's limit check stops the search
+      generate(t);
+    }
+    if (ng >= g_[t]) continue;
+    g_[t] = ng;
+    parent_[t] = s;
+    const std::uint8_t f = flags_[t];
+    if (f & kClosedAnch) {
+      if (!(f & kIncons)) {
+        flags_[t] |= kIncons;
+        incons_.push_back(t);
+      }
+      continue;
+    }
+    if (h(t, 0) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
+    const MhaKey k0 = key(t, 0);
+    open_[0].push(t, k0);
+    if (f & kClosedInad) continue;
+    for (std::size_t i = 1; i < nh_; ++i) {
+      if (admits(t, i, k0.f)) {
+        open_[i].push(t, key(t, i));
+      } else {
+        // A lower g can make the test fail; keep OPEN_i exactly the states that pass it.
+        open_[i].remove(t);
+      }
+    }
+  }
+}
+
+void MhaEngine::prepareNextIteration() {
+  // Lines 38-40: move INCONS into OPEN_0, then re-key OPEN_0 with the new w1.
+  for (StateId s : incons_) {
+    flags_[s] &= static_cast<std::uint8_t>(~kIncons);
+    if (h(s, 0) != kInfiniteHeuristic) open_[0].appendUnordered(s, MhaKey{0.0, 0});
+  }
+  incons_.clear();
+  open_[0].rekey([this](StateId s) { return key(s, 0); });
+  // "Copy all states from OPEN_0 to OPEN_i": we re-apply Expand's admission test
+  // (key_i <= w2 * key_0, h_i finite). The paper leaves this open. The bound proof only needs
+  // line 19's test, so either choice is correct; filtering keeps OPEN_i identical to what
+  // Expand would have built with the new weights (one invariant, checked by the tests), and
+  // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
+  for (std::size_t i = 1; i < nh_; ++i) {
+    open_[i].clear();
+    for (const auto& e : open_[0].entries()) {
+      if (admits(e.id, i, e.key.f)) open_[i].appendUnordered(e.id, key(e.id, i));
+    }
+    open_[i].rebuild();
+  }
+  clearClosed();
+}
+
+void MhaEngine::clearClosed() {
+  const std::uint8_t keep = static_cast<std::uint8_t>(~(kClosedAnch | kClosedInad));
+  for (std::size_t s = 0; s < used_; ++s) flags_[s] &= keep;
+}
+
+Cost MhaEngine::lowerBound() const {
+  // Every state whose g changed since its last expansion is in OPEN_0 or INCONS (Expand puts
+  // it in one of them; prepareNextIteration moves INCONS into OPEN_0). On an optimal path, the
+  // first state whose g is above optimal has a predecessor p with g(p) = g*(p) that is not
+  // expanded with that g, so p is in OPEN_0 or INCONS and g(p) + h0(p) <= g*(goal) by
+  // admissibility. Hence this minimum is a lower bound on the optimal cost (or the solution is
+  // already optimal). States with h0 = infinity cannot lie on any path to the goal.
+  Cost lb = kInfiniteCost;
+  auto consider = [&](StateId s) {
+    const HeuristicValue h0 = h(s, 0);
+    if (h0 != kInfiniteHeuristic) lb = std::min(lb, g_[s] + static_cast<Cost>(h0));
+  };
+  for (const auto& e : open_[0].entries()) consider(e.id);
+  for (StateId s : incons_) consider(s);
+  return lb;
+}
+
+void MhaEngine::checkInvariants() const {
+  auto fail = [](const std::string& what) { throw std::logic_error("A-MHA* invariant: " + what); };
+  for (std::size_t i = 0; i < nh_; ++i) {
+    for (const auto& e : open_[i].entries()) {
+      const StateId s = e.id;
+      if (flags_[s] & kClosedAnch) fail("closed state in an OPEN queue");
+      if (std::abs(e.key.f - key(s, i).f) > 1e-9 * std::max(1.0, e.key.f)) {
+        fail("stale key in OPEN_" + std::to_string(i));
+      }
+      if (i > 0) {
+        if (!open_[0].contains(s)) fail("OPEN_i is not a subset of OPEN_0");
+        if (!admits(s, i, key(s, 0).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
+      }
+    }
+  }
+  for (StateId s : incons_) {
+    if (!(flags_[s] & kClosedAnch)) fail("INCONS state not in CLOSED_anch");
+  }
+}
+
+}  // namespace detail
+}  // namespace amha

@@ -1,0 +1,84 @@
+// A-MHA* (Algorithm 1 of the paper) and the algorithms that are special cases of it:
+// MHA* (one ImprovePath), ARA* (no inadmissible heuristics, w2 = 1), weighted A* (ARA* with one
+// iteration) and A* (weight 1). One engine, so comparisons between them are fair.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "amha_planner/search/indexed_heap.h"
+#include "search_base.h"
+
+namespace amha {
+namespace detail {
+
+struct MhaEngineOptions {
+  double w1 = 5.0, w2 = 5.0;    // initial weights
+  double dw1 = 0.5, dw2 = 0.5;  // decrements per iteration
+  bool anytime = true;          // false: one ImprovePath (MHA*, weighted A*, A*)
+  std::size_t max_inadmissible = 0;
+  bool stop_when_certified_optimal = true;
+  bool check_invariants = false;
+};
+
+/// Queue key: g + w1*h, ties broken towards the smaller h (deeper states), which matters in
+/// domains with many equal f-values such as the sliding tiles.
+struct MhaKey {
+  double f;
+  HeuristicValue h;
+  bool operator<(const MhaKey& o) const { return f < o.f || (f == o.f && h < o.h); }
+};
+
+/// Hook for tests: called for every expansion with the state, the queue (0 = anchor) and the
+/// ImprovePath iteration.
+using ExpansionObserver = std::function<void(StateId, std::size_t queue, int iteration)>;
+
+class MhaEngine : public SearchBase {
+ public:
+  explicit MhaEngine(const MhaEngineOptions& options) : opt_(options) {}
+  SearchResult run(SearchProblem& problem, const SearchLimits& limits,
+                   const SolutionCallback& on_solution);
+  void setObserver(ExpansionObserver obs) { observer_ = std::move(obs); }
+
+ private:
+  enum Flag : std::uint8_t { kGenerated = 1, kClosedAnch = 2, kClosedInad = 4, kIncons = 8 };
+
+  bool improvePath();  // false if a limit stopped it
+  void expand(StateId s, std::size_t queue);
+  bool generate(StateId s);  // computes and caches the heuristics of a new state
+  void prepareNextIteration();
+  void clearClosed();
+  Cost lowerBound() const;  // min over OPEN_0 and INCONS of g + h0
+  void checkInvariants() const;
+
+  HeuristicValue h(StateId s, std::size_t i) const { return h_[s * nh_ + i]; }
+  MhaKey key(StateId s, std::size_t i) const {
+    const HeuristicValue hv = h(s, i);
+    return MhaKey{static_cast<double>(g_[s]) + w1_ * static_cast<double>(hv), hv};
+  }
+  // Expand's admission test for OPEN_i (i >= 1): finite h_i and key_i <= w2 * key_0.
+  bool admits(StateId s, std::size_t i, double key0) const {
+    return h(s, i) != kInfiniteHeuristic && key(s, i).f <= w2_ * key0;
+  }
+
+  std::size_t engineBytes() const override;
+  void growArrays(std::size_t cap) override;
+  void resetArrays(std::size_t used) override;
+
+  MhaEngineOptions opt_;
+  std::size_t nh_ = 1;  // heuristics in use, anchor included
+  double w1_ = 1.0, w2_ = 1.0;
+  int iteration_ = 0;
+  std::size_t round_robin_ = 0;
+
+  std::vector<HeuristicValue> h_;  // nh_ values per state
+  std::vector<std::uint8_t> flags_;
+  std::vector<StateId> incons_;
+  std::vector<IndexedHeap<MhaKey>> open_;  // open_[0] is the anchor queue
+  std::vector<HeuristicValue> hbuf_;
+  ExpansionObserver observer_;
+};
+
+}  // namespace detail
+}  // namespace amha

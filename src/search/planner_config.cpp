@@ -1,0 +1,73 @@
+// Names and presets of the algorithms.
+#include <stdexcept>
+#include <string>
+
+#include "amha_planner/search/planner.h"
+
+namespace amha {
+
+namespace {
+struct NamedAlgorithm {
+  Algorithm algorithm;
+  const char* name;
+};
+constexpr NamedAlgorithm kAlgorithms[] = {
+    {Algorithm::kAmhaStar, "amha"},      {Algorithm::kMhaStar, "mha"},
+    {Algorithm::kAraStar, "ara"},        {Algorithm::kAnaStar, "ana"},
+    {Algorithm::kWeightedAStar, "wastar"}, {Algorithm::kAStar, "astar"},
+};
+}  // namespace
+
+const char* algorithmName(Algorithm a) {
+  for (const auto& n : kAlgorithms) {
+    if (n.algorithm == a) return n.name;
+  }
+  return "unknown";
+}
+
+bool parseAlgorithm(const std::string& name, Algorithm* out) {
+  for (const auto& n : kAlgorithms) {
+    if (name == n.name) {
+      *out = n.algorithm;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* statusName(SearchStatus s) {
+  switch (s) {
+    case SearchStatus::kProvenOptimal: return "proven_optimal";
+    case SearchStatus::kBoundReached: return "bound_reached";
+    case SearchStatus::kTimeLimit: return "time_limit";
+    case SearchStatus::kExpansionLimit: return "expansion_limit";
+    case SearchStatus::kMemoryLimit: return "memory_limit";
+    case SearchStatus::kCancelled: return "cancelled";
+    case SearchStatus::kNoSolution: return "no_solution";
+  }
+  return "unknown";
+}
+
+PlannerConfig defaultConfig(Algorithm algorithm) {
+  PlannerConfig c;
+  c.algorithm = algorithm;
+  switch (algorithm) {
+    case Algorithm::kAmhaStar:  // the paper's initial bound w1*w2 = 25, then 20.25, 16, ... 1
+    case Algorithm::kMhaStar:
+      c.w1 = 5.0; c.w2 = 5.0; c.dw1 = 0.5; c.dw2 = 0.5;
+      break;
+    case Algorithm::kAraStar:  // epsilon 25, 22, ..., 4, 1: as many iterations as A-MHA*'s
+      c.w1 = 25.0; c.w2 = 1.0; c.dw1 = 3.0; c.dw2 = 0.0;
+      break;
+    case Algorithm::kWeightedAStar:
+      c.w1 = 5.0; c.w2 = 1.0; c.dw1 = 0.0; c.dw2 = 0.0;
+      break;
+    case Algorithm::kAnaStar:
+    case Algorithm::kAStar:
+      c.w1 = 1.0; c.w2 = 1.0; c.dw1 = 0.0; c.dw2 = 0.0;
+      break;
+  }
+  return c;
+}
+
+}  // namespace amha

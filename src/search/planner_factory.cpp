@@ -1,0 +1,100 @@
+// Maps an Algorithm and its parameters onto the engines.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "amha_planner/search/planner.h"
+#include "ana_star.h"
+#include "mha_engine.h"
+
+namespace amha {
+namespace {
+
+class MhaPlanner : public Planner {
+ public:
+  explicit MhaPlanner(const detail::MhaEngineOptions& o) : engine_(o) {}
+  SearchResult search(SearchProblem& problem, const SearchLimits& limits,
+                      const SolutionCallback& cb) override {
+    return engine_.run(problem, limits, cb);
+  }
+
+ private:
+  detail::MhaEngine engine_;
+};
+
+class AnaPlanner : public Planner {
+ public:
+  SearchResult search(SearchProblem& problem, const SearchLimits& limits,
+                      const SolutionCallback& cb) override {
+    return engine_.run(problem, limits, cb);
+  }
+
+ private:
+  detail::AnaStar engine_;
+};
+
+void checkWeight(double w, const char* name) {
+  if (!std::isfinite(w) || w < 1.0) {
+    throw std::invalid_argument(std::string(name) + " must be a finite number >= 1, got " +
+                                std::to_string(w));
+  }
+}
+void checkDecrement(double d, const char* name) {
+  if (!std::isfinite(d) || d < 0.0) {
+    throw std::invalid_argument(std::string(name) + " must be a finite number >= 0, got " +
+                                std::to_string(d));
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
+  detail::MhaEngineOptions o;
+  o.stop_when_certified_optimal = c.stop_when_certified_optimal;
+  o.check_invariants = c.check_invariants;
+  o.dw1 = o.dw2 = 0.0;
+  o.w1 = o.w2 = 1.0;
+  o.anytime = false;
+  o.max_inadmissible = 0;
+  switch (c.algorithm) {
+    case Algorithm::kAnaStar:
+      return std::make_unique<AnaPlanner>();
+    case Algorithm::kAmhaStar:
+      checkWeight(c.w1, "w1");
+      checkWeight(c.w2, "w2");
+      checkDecrement(c.dw1, "dw1");
+      checkDecrement(c.dw2, "dw2");
+      if ((c.w1 > 1.0 && c.dw1 <= 0.0) || (c.w2 > 1.0 && c.dw2 <= 0.0)) {
+        throw std::invalid_argument(
+            "A-MHA* needs dw1 > 0 (if w1 > 1) and dw2 > 0 (if w2 > 1) to reach bound 1");
+      }
+      o.w1 = c.w1; o.w2 = c.w2; o.dw1 = c.dw1; o.dw2 = c.dw2;
+      o.anytime = true;
+      o.max_inadmissible = c.max_inadmissible;
+      break;
+    case Algorithm::kMhaStar:
+      checkWeight(c.w1, "w1");
+      checkWeight(c.w2, "w2");
+      o.w1 = c.w1; o.w2 = c.w2;
+      o.max_inadmissible = c.max_inadmissible;
+      break;
+    case Algorithm::kAraStar:
+      checkWeight(c.w1, "epsilon (w1)");
+      checkDecrement(c.dw1, "epsilon decrement (dw1)");
+      if (c.w1 > 1.0 && c.dw1 <= 0.0) {
+        throw std::invalid_argument("ARA* needs an epsilon decrement dw1 > 0 to reach 1");
+      }
+      o.w1 = c.w1; o.dw1 = c.dw1;
+      o.anytime = true;
+      break;
+    case Algorithm::kWeightedAStar:
+      checkWeight(c.w1, "weight (w1)");
+      o.w1 = c.w1;
+      break;
+    case Algorithm::kAStar:
+      break;
+  }
+  return std::make_unique<MhaPlanner>(o);
+}
+
+}  // namespace amha

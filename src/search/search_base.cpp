@@ -1,0 +1,117 @@
+#include "search_base.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace amha {
+namespace detail {
+
+void SearchBase::begin(SearchProblem& problem, const SearchLimits& limits,
+                       const SolutionCallback* cb) {
+  t0_ = Clock::now();
+  problem_ = &problem;
+  limits_ = limits;
+  callback_ = cb;
+  result_ = SearchResult();
+  stop_ = SearchStatus::kNoSolution;
+  expansions_ = 0;
+  generated_ = 0;
+  const std::size_t used = std::min(used_, capacity_);
+  std::fill(g_.begin(), g_.begin() + used, kInfiniteCost);
+  std::fill(parent_.begin(), parent_.begin() + used, kNoState);
+  resetArrays(used);
+  used_ = 0;
+}
+
+bool SearchBase::grow(StateId id) {
+  std::size_t cap = std::max<std::size_t>(capacity_ * 2, 1024);
+  while (cap <= id) cap *= 2;
+  // Refuse growth that would break the memory cap, before allocating.
+  const std::size_t per_state = capacity_ > 0 ? (engineBytes() + capacity_ - 1) / capacity_ : 64;
+  if (limits_.max_memory_bytes != SearchLimits().max_memory_bytes &&
+      problem_->memoryBytes() + cap * per_state > limits_.max_memory_bytes) {
+    // Try the exact size needed before giving up.
+    cap = static_cast<std::size_t>(id) + 1;
+    if (problem_->memoryBytes() + cap * per_state > limits_.max_memory_bytes) {
+      stopWith(SearchStatus::kMemoryLimit);
+      return false;
+    }
+  }
+  g_.resize(cap, kInfiniteCost);
+  parent_.resize(cap, kNoState);
+  growArrays(cap);
+  capacity_ = cap;
+  used_ = static_cast<std::size_t>(id) + 1;
+  return true;
+}
+
+std::size_t SearchBase::memoryBytes() const {
+  return problem_->memoryBytes() + engineBytes() + g_.capacity() * sizeof(Cost) +
+         parent_.capacity() * sizeof(StateId);
+}
+
+bool SearchBase::slowLimitCheck() {
+  if (limits_.cancel != nullptr && limits_.cancel->load(std::memory_order_relaxed)) {
+    return stopWith(SearchStatus::kCancelled);
+  }
+  if (elapsed() >= limits_.time_limit_s) return stopWith(SearchStatus::kTimeLimit);
+  if ((expansions_ & 4095u) == 0 && memoryBytes() > limits_.max_memory_bytes) {
+    return stopWith(SearchStatus::kMemoryLimit);
+  }
+  return false;
+}
+
+void SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, double w1,
+                        double w2) {
+  SearchProblem& p = *problem_;
+  Solution sol;
+  // Parent chains are acyclic (g strictly decreases towards the start since edge costs are
+  // >= 1), but bound the walk anyway so a domain that breaks the contract cannot hang us.
+  for (StateId s = p.goal(); s != kNoState; s = parent_[s]) {
+    sol.path.push_back(s);
+    if (sol.path.size() > generated_ + 1) throw std::logic_error("cycle in parent pointers");
+  }
+  std::reverse(sol.path.begin(), sol.path.end());
+  // The path's own cost can be below g(goal) when ancestors improved after their child was
+  // reached; report the true sum of edges (the bound proofs hold for g(goal) >= that sum).
+  Cost cost = 0;
+  for (std::size_t k = 1; k < sol.path.size(); ++k) {
+    p.successors(sol.path[k - 1], path_succ_);
+    Cost best = kInfiniteCost;
+    for (const Edge& e : path_succ_) {
+      if (e.to == sol.path[k]) best = std::min(best, e.cost);
+    }
+    if (best == kInfiniteCost) throw std::logic_error("parent chain uses a non-edge");
+    cost += best;
+  }
+  sol.cost = cost;
+  sol.nominal_bound = nominal_bound;
+  // certified = cost / LB, where LB <= optimal; clamp to [1, nominal]: the nominal bound is
+  // proven by the algorithm's own theorem, so the smaller of the two is still a valid bound.
+  double certified = nominal_bound;
+  if (lower_bound >= cost) {
+    certified = 1.0;
+  } else if (lower_bound > 0 && lower_bound < kInfiniteCost) {
+    certified = std::min(nominal_bound,
+                         static_cast<double>(cost) / static_cast<double>(lower_bound));
+  }
+  sol.certified_bound = std::max(1.0, certified);
+  sol.elapsed_s = elapsed();
+  sol.expansions = expansions_;
+  sol.iteration = iteration;
+  sol.w1 = w1;
+  sol.w2 = w2;
+  result_.solutions.push_back(std::move(sol));
+  if (callback_ != nullptr && *callback_) (*callback_)(result_.solutions.back());
+}
+
+void SearchBase::finish(SearchStatus status) {
+  result_.status = status;
+  result_.expansions = expansions_;
+  result_.peak_states = generated_;
+  result_.peak_memory_bytes = memoryBytes();
+  result_.elapsed_s = elapsed();
+}
+
+}  // namespace detail
+}  // namespace amha

@@ -1,0 +1,88 @@
+// State shared by the engines: per-state g / parent arrays that grow with the dense ids, the
+// limit checks (time, expansions, states, memory, cancel), and turning a parent chain into a
+// reported Solution with its certified bound.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "amha_planner/search/planner.h"
+
+namespace amha {
+namespace detail {
+
+class SearchBase {
+ protected:
+  using Clock = std::chrono::steady_clock;
+
+  /// Starts a search: remembers problem and limits and resets per-state data of the last one.
+  void begin(SearchProblem& problem, const SearchLimits& limits, const SolutionCallback* cb);
+
+  /// Grows the per-state arrays so that `id` is addressable (geometric growth: no per-expansion
+  /// allocation once warmed up). Returns false if the memory cap would be exceeded.
+  bool ensure(StateId id) {
+    if (id < capacity_) {
+      if (id >= used_) used_ = id + 1;
+      return true;
+    }
+    return grow(id);
+  }
+
+  /// Checks time, cancel, expansion, state and memory limits. Cheap checks every call,
+  /// the clock and the domain's memory every 64 expansions.
+  bool limitHit() {
+    if (stop_ != SearchStatus::kNoSolution) return true;
+    if (expansions_ >= limits_.max_expansions) return stopWith(SearchStatus::kExpansionLimit);
+    if (generated_ > limits_.max_states) return stopWith(SearchStatus::kMemoryLimit);
+    if ((expansions_ & 63u) == 0) return slowLimitCheck();
+    return false;
+  }
+  bool slowLimitCheck();
+  bool stopWith(SearchStatus s) {
+    stop_ = s;
+    return true;
+  }
+  bool stopped() const { return stop_ != SearchStatus::kNoSolution; }
+
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
+
+  /// Builds the path start..goal from parent pointers, recomputes its cost from the domain's
+  /// edges, and reports it (with the given bounds) through the callback and into result_.
+  /// `lower_bound` is a proven lower bound on the optimal cost (kInfiniteCost if none).
+  void report(double nominal_bound, Cost lower_bound, int iteration, double w1, double w2);
+
+  /// Bytes of the subclass's own arrays, for the memory cap.
+  virtual std::size_t engineBytes() const = 0;
+  /// Called when the arrays grow to `new_capacity` ids; subclasses grow theirs.
+  virtual void growArrays(std::size_t new_capacity) = 0;
+  /// Resets the subclass's per-state data for ids [0, used) at the start of a search.
+  virtual void resetArrays(std::size_t used) = 0;
+
+  std::size_t memoryBytes() const;
+  void finish(SearchStatus status);
+
+  SearchProblem* problem_ = nullptr;
+  SearchLimits limits_;
+  const SolutionCallback* callback_ = nullptr;
+  Clock::time_point t0_;
+  SearchResult result_;
+  SearchStatus stop_ = SearchStatus::kNoSolution;  // kNoSolution means "not stopped"
+
+  std::uint64_t expansions_ = 0;
+  std::size_t generated_ = 0;  // states that received search data (g < infinity)
+  std::size_t capacity_ = 0;   // ids addressable in the arrays
+  std::size_t used_ = 0;       // 1 + the largest id touched in this search
+
+  std::vector<Cost> g_;
+  std::vector<StateId> parent_;
+  std::vector<Edge> succ_;  // successor buffer, reused across expansions
+
+ private:
+  bool grow(StateId id);
+  std::vector<Edge> path_succ_;  // separate buffer for path cost recomputation
+};
+
+}  // namespace detail
+}  // namespace amha

@@ -1,0 +1,115 @@
+// Limits and endings: no solution, time budget, cancel from another thread, expansion and
+// state/memory caps. Searches on an endless grid would run forever without them.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "test_graphs.h"
+
+namespace amha {
+namespace {
+
+const Algorithm kAll[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
+                          Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar};
+
+TEST(Limits, UnreachableGoalEndsWithNoSolution) {
+  testing::GenOptions o;
+  testing::ExplicitGraph g = testing::randomGrid(20, 20, 0.0, o);
+  // Wall off the goal: remove every edge into it.
+  for (auto& edges : g.adj) {
+    edges.erase(std::remove_if(edges.begin(), edges.end(),
+                               [&](const Edge& e) { return e.to == g.s_goal; }),
+                edges.end());
+  }
+  for (auto& hs : g.h) hs[0] = 0;  // still admissible
+  g.h[g.s_goal].assign(g.n_heuristics, 0);
+  for (Algorithm a : kAll) {
+    const SearchResult r = makePlanner(defaultConfig(a))->search(g, SearchLimits());
+    EXPECT_EQ(r.status, SearchStatus::kNoSolution) << algorithmName(a);
+    EXPECT_FALSE(r.hasSolution());
+  }
+}
+
+TEST(Limits, InfiniteAnchorAtStartMeansNoSolution) {
+  testing::GenOptions o;
+  testing::ExplicitGraph g = testing::randomGrid(10, 10, 0.0, o);
+  g.h[g.s_start][0] = kInfiniteHeuristic;
+  for (Algorithm a : kAll) {
+    const SearchResult r = makePlanner(defaultConfig(a))->search(g, SearchLimits());
+    EXPECT_EQ(r.status, SearchStatus::kNoSolution) << algorithmName(a);
+  }
+}
+
+TEST(Limits, TimeBudgetHonouredWithinMilliseconds) {
+  for (Algorithm a : kAll) {
+    testing::EndlessGrid grid(5);
+    SearchLimits limits;
+    limits.time_limit_s = 0.05;
+    const auto t0 = std::chrono::steady_clock::now();
+    const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(r.status, SearchStatus::kTimeLimit) << algorithmName(a);
+    EXPECT_GE(took, 0.05);
+    EXPECT_LT(took, 0.05 + 0.02) << algorithmName(a);
+    EXPECT_GT(r.expansions, 0u);
+  }
+}
+
+TEST(Limits, CancelFromAnotherThread) {
+  for (Algorithm a : kAll) {
+    testing::EndlessGrid grid(3);
+    std::atomic<bool> cancel{false};
+    SearchLimits limits;
+    limits.cancel = &cancel;
+    std::chrono::steady_clock::time_point cancelled_at;
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(30));
+      cancelled_at = std::chrono::steady_clock::now();
+      cancel = true;
+    });
+    const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+    const auto ended = std::chrono::steady_clock::now();
+    canceller.join();
+    EXPECT_EQ(r.status, SearchStatus::kCancelled) << algorithmName(a);
+    EXPECT_LT(std::chrono::duration<double>(ended - cancelled_at).count(), 0.02);
+  }
+}
+
+TEST(Limits, ExpansionCap) {
+  for (Algorithm a : kAll) {
+    testing::EndlessGrid grid(2);
+    SearchLimits limits;
+    limits.max_expansions = 1000;
+    const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+    EXPECT_EQ(r.status, SearchStatus::kExpansionLimit) << algorithmName(a);
+    EXPECT_EQ(r.expansions, 1000u);
+  }
+}
+
+TEST(Limits, StateCap) {
+  for (Algorithm a : kAll) {
+    testing::EndlessGrid grid(2);
+    SearchLimits limits;
+    limits.max_states = 5000;
+    const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+    EXPECT_EQ(r.status, SearchStatus::kMemoryLimit) << algorithmName(a);
+    EXPECT_LE(r.peak_states, 5000u + 4);
+  }
+}
+
+TEST(Limits, MemoryCap) {
+  for (Algorithm a : kAll) {
+    testing::EndlessGrid grid(4);
+    SearchLimits limits;
+    limits.max_memory_bytes = 8u << 20;
+    const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+    EXPECT_EQ(r.status, SearchStatus::kMemoryLimit) << algorithmName(a);
+    EXPECT_LE(r.peak_memory_bytes, (8u << 20) + (1u << 20)) << algorithmName(a);
+  }
+}
+
+}  // namespace
+}  // namespace amha
