@@ -13,7 +13,7 @@ AMHA_DEBS=(
   ros-core-dev catkin ros-message-generation libnodeletlib-dev libnodeletlib-tools
   libtf2-ros-dev libnav-msgs-dev libgeometry-msgs-dev libvisualization-msgs-dev libstd-srvs-dev
   libactionlib-dev librostest-dev python3-rostest
-  libopencv-dev libeigen3-dev libyaml-cpp-dev
+  libopencv-dev libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
 )
 
 amha_log() { echo "[amha] $*" >&2; }

@@ -1,0 +1,28 @@
+// The JSON schema shared by `amha tiles`, `amha plan` and the benchmarks:
+// {"runs": [{"instance", "algorithm", "status", "optimal_cost", "expansions", "peak_states",
+//            "peak_memory_bytes", "elapsed_s", "solutions": [{"elapsed_s", "cost", "bound",
+//            "certified_bound", "expansions", "iteration", "w1", "w2"}, ...]}, ...]}
+// Infinite bounds (ANA*'s before its first E) are written as null: JSON has no infinity.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "amha_planner/search/planner.h"
+
+namespace amha {
+namespace cli {
+
+nlohmann::json solutionToJson(const Solution& s);
+
+nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
+                         const SearchResult& result, std::optional<Cost> optimal_cost);
+
+/// Writes {"runs": runs, ...extra} to `path` (pretty-printed). Throws std::runtime_error.
+void writeRunsJson(const std::string& path, const nlohmann::json& runs,
+                   const nlohmann::json& extra = nlohmann::json::object());
+
+}  // namespace cli
+}  // namespace amha
