@@ -1,0 +1,146 @@
+// The lattice domain's public face, used by `amha plan`, the benchmarks and the ROS layer:
+// a map, a robot (footprint + motion primitives), and anytime planning between two poses.
+// Everything here is ROS-free; poses are in the map frame (REP 103: metres, radians, x forward).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "amha_planner/search/planner.h"
+
+namespace amha {
+namespace lattice {
+
+/// Cell costs follow costmap_2d: 0 free .. 252 increasingly costly, 253 inscribed (the robot's
+/// inscribed circle would touch an obstacle), 254 lethal (an obstacle), 255 unknown.
+constexpr std::uint8_t kFreeCost = 0;
+constexpr std::uint8_t kInscribedCost = 253;
+constexpr std::uint8_t kLethalCost = 254;
+constexpr std::uint8_t kUnknownCost = 255;
+
+/// A 2-D map. Cell (0, 0) is the bottom-left cell (nav_msgs/OccupancyGrid order: row-major,
+/// x fastest, row 0 at the origin); (origin_x, origin_y) is that cell's outer corner in the map
+/// frame, and the grid is rotated by origin_yaw about it.
+struct GridMap {
+  int width = 0;
+  int height = 0;
+  double resolution = 0.0;  ///< metres per cell
+  double origin_x = 0.0, origin_y = 0.0, origin_yaw = 0.0;
+  std::vector<std::uint8_t> cost;  ///< width * height cell costs
+
+  std::uint8_t at(int x, int y) const { return cost[static_cast<std::size_t>(y) * width + x]; }
+};
+
+/// How occupancy percentages (-1 unknown, 0..100) become cell costs.
+struct OccupancyConversion {
+  int lethal_threshold = 65;     ///< occupancy >= this: lethal (map_server's occupied_thresh 0.65)
+  bool unknown_is_free = false;  ///< false: unknown cells are obstacles
+};
+
+/// Bad maps, primitive files or robot descriptions, with a message that names the problem.
+class LatticeError : public std::runtime_error {
+ public:
+  enum class Kind { kMap, kPrimitives, kRobot, kConfig };
+  LatticeError(Kind kind, const std::string& what) : std::runtime_error(what), kind_(kind) {}
+  Kind kind() const { return kind_; }
+
+ private:
+  Kind kind_;
+};
+
+/// Builds a GridMap from OccupancyGrid-style data. Throws LatticeError (kMap) for sizes that are
+/// not positive, data whose length is not width * height, a resolution that is not positive
+/// and finite, a non-finite origin, or a map larger than `max_cells`.
+GridMap gridMapFromOccupancy(int width, int height, double resolution, double origin_x,
+                             double origin_y, double origin_yaw, const std::int8_t* data,
+                             std::size_t data_size, const OccupancyConversion& conversion,
+                             std::size_t max_cells = std::size_t{1} << 26);
+
+struct Pose2D {
+  double x = 0.0, y = 0.0, theta = 0.0;
+};
+
+/// The robot and its motion model.
+struct LatticeConfig {
+  std::string mprim_file;        ///< SBPL .mprim file; empty: generate primitives from below
+  int num_headings = 16;         ///< generated primitives: a multiple of 8
+  double turning_radius = 0.5;   ///< generated primitives: minimum turning radius (m)
+  bool allow_reverse = false;    ///< generated primitives: add backward motions
+  bool turn_in_place = true;     ///< generated primitives: add turns on the spot
+  std::vector<std::array<double, 2>> footprint;  ///< polygon (m, base frame); empty: a circle
+  double robot_radius = 0.2;     ///< used when footprint is empty
+  /// Edge cost = length x primitive multiplier x (1 + cost_penalty x worst cell cost / 252).
+  double cost_penalty = 1.0;
+  /// Inadmissible heuristics (0..3): 8-connected Dijkstra for a point robot, then the same on
+  /// maps with passages narrower than the inscribed / circumscribed diameter blocked.
+  int num_inadmissible = 3;
+};
+
+/// Why a query was refused before searching.
+enum class QueryError {
+  kNone,
+  kStartNotFinite,
+  kGoalNotFinite,
+  kStartOutOfMap,
+  kGoalOutOfMap,
+  kStartInCollision,
+  kGoalInCollision,
+};
+
+/// Search costs are integers; this many units make one metre of free, straight driving.
+constexpr double kCostUnitsPerMetre = 1000.0;
+
+/// One improved solution on the lattice.
+struct LatticeSolution {
+  Solution search;            ///< ids, cost (units), bounds, timing, iteration, weights
+  std::vector<Pose2D> poses;  ///< the path in the map frame, intermediate poses included
+};
+
+struct PlanResult {
+  QueryError error = QueryError::kNone;
+  std::string message;        ///< human-readable reason when error != kNone
+  SearchResult search;        ///< status and every solution (state ids)
+  std::vector<LatticeSolution> solutions;  ///< the same solutions, as poses
+};
+
+/// A lattice planner for one map and one robot. Construction does the per-map work (loads or
+/// generates primitives, checks them against the map, precomputes footprint sweeps, builds the
+/// maps the heuristics need); heuristic grids are computed per goal and cached.
+/// plan() may be called from several threads at once.
+class LatticePlanner {
+ public:
+  /// Throws LatticeError when the map, primitives or robot are unusable.
+  LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config);
+  ~LatticePlanner();
+  LatticePlanner(const LatticePlanner&) = delete;
+  LatticePlanner& operator=(const LatticePlanner&) = delete;
+
+  const GridMap& map() const;
+  const LatticeConfig& config() const;
+
+  /// Checks start and goal (finite, inside the map, footprint collision-free).
+  QueryError checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const;
+
+  /// Plans from start to goal. Query errors are returned in PlanResult (no search is run);
+  /// every improved solution is passed to on_solution as soon as it is found.
+  PlanResult plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
+                  const SearchLimits& limits,
+                  const std::function<void(const LatticeSolution&)>& on_solution = {});
+
+  /// The footprint polygon placed at a pose (map frame), for drawing and markers.
+  std::vector<std::array<double, 2>> footprintAt(const Pose2D& pose) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+const char* queryErrorName(QueryError e);
+
+}  // namespace lattice
+}  // namespace amha
