@@ -16,3 +16,9 @@ amha_add_gtest(amha_search_tests
     test/search/optimality_test.cpp
     test/search/limits_test.cpp
   LIBS amha_search)
+
+if(AMHA_FUZZ)
+  add_library(amha_search_test_graphs STATIC test/search/test_graphs.cpp)
+  target_link_libraries(amha_search_test_graphs PUBLIC amha_search)
+  amha_add_fuzzer(search LIBS amha_search_test_graphs)
+endif()

@@ -169,7 +169,8 @@ EndlessGrid::EndlessGrid(std::size_t n_heuristics) : n_heuristics_(n_heuristics)
 }
 
 StateId EndlessGrid::idOf(std::int64_t x, std::int64_t y) {
-  const std::int64_t key = (x << 32) ^ (y & 0xffffffff);
+  const std::int64_t key = static_cast<std::int64_t>((static_cast<std::uint64_t>(x) << 32) ^
+                                                    (static_cast<std::uint64_t>(y) & 0xffffffffu));
   auto it = ids_.find(key);
   if (it != ids_.end()) return it->second;
   const StateId id = static_cast<StateId>(cells_.size());

@@ -1,0 +1,72 @@
+// Fuzzes the search core: a graph, costs and arbitrary inadmissible heuristics (including
+// infinite ones) from the input bytes; every algorithm's every solution must be a valid path
+// within its certified bound of the Dijkstra optimum, and unsolvable inputs must end cleanly.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+
+#include "../search/test_graphs.h"
+
+namespace {
+
+struct Bytes {
+  const std::uint8_t* p;
+  std::size_t n;
+  std::uint8_t next() {
+    if (n == 0) return 0;
+    --n;
+    return *p++;
+  }
+};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace amha;
+  Bytes in{data, size};
+  testing::ExplicitGraph g;
+  const int n = 2 + in.next() % 40;
+  const int m = in.next() * 2;
+  g.adj.assign(n, {});
+  for (int k = 0; k < m && in.n >= 3; ++k) {
+    const StateId a = in.next() % n, b = in.next() % n;
+    g.adj[a].push_back(Edge{b, 1 + static_cast<Cost>(in.next())});
+  }
+  g.s_start = 0;
+  g.s_goal = static_cast<StateId>(n - 1);
+  g.n_heuristics = 1 + in.next() % 6;
+  const double scale = (in.next() % 5) / 4.0;
+  const auto d = testing::distancesToGoal(g);
+  g.h.assign(n, std::vector<HeuristicValue>(g.n_heuristics, 0));
+  for (int s = 0; s < n; ++s) {
+    g.h[s][0] = d[s] >= kInfiniteCost ? kInfiniteHeuristic
+                                       : static_cast<HeuristicValue>(std::floor(scale * d[s]));
+    for (std::size_t i = 1; i < g.n_heuristics; ++i) {
+      const std::uint8_t b = in.next();
+      g.h[s][i] = b == 255 ? kInfiniteHeuristic : static_cast<HeuristicValue>(b) * 7;
+    }
+  }
+  g.h[g.s_goal][0] = 0;
+  const Cost optimal = d[g.s_start];
+  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
+                      Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar}) {
+    PlannerConfig c = defaultConfig(a);
+    c.check_invariants = true;
+    const SearchResult r = makePlanner(c)->search(g, SearchLimits());
+    if (optimal >= kInfiniteCost) {
+      if (r.status != SearchStatus::kNoSolution || r.hasSolution()) std::abort();
+      continue;
+    }
+    if (!r.hasSolution()) std::abort();
+    for (const Solution& s : r.solutions) {
+      const std::string err = testing::validateSolution(g, s, optimal);
+      if (!err.empty()) {
+        std::fprintf(stderr, "%s: %s\n", algorithmName(a), err.c_str());
+        std::abort();
+      }
+    }
+    if (r.status == SearchStatus::kProvenOptimal && r.best().cost != optimal) std::abort();
+  }
+  return 0;
+}
