@@ -13,12 +13,18 @@ amha_fuzz_build() {
   cmake --build "$dir" -j "$(nproc)" --target amha_fuzzers >&2
 }
 
-# amha_fuzz_run <seconds per target>
+# amha_fuzz_run <seconds per target> [target ...]   (default: every target)
 amha_fuzz_run() {
-  local seconds=$1 dir="$AMHA_ROOT/build-fuzz" ok=0 f name work
-  for f in "$dir"/fuzz/*_fuzzer; do
-    [ -x "$f" ] || continue
-    name=$(basename "$f" _fuzzer)
+  local seconds=$1 dir="$AMHA_ROOT/build-fuzz" ok=0 f name work count=0
+  shift
+  local targets=("$@")
+  if [ ${#targets[@]} -eq 0 ]; then
+    for f in "$dir"/fuzz/*_fuzzer; do [ -x "$f" ] && targets+=("$(basename "$f" _fuzzer)"); done
+  fi
+  for name in "${targets[@]}"; do
+    f="$dir/fuzz/${name}_fuzzer"
+    [ -x "$f" ] || { echo "no fuzz target $name"; ok=1; continue; }
+    count=$((count + 1))
     work=$(mktemp -d)
     cp -r "$AMHA_ROOT/test/fuzz/corpus/$name/." "$work/" 2>/dev/null || true
     mkdir -p "$dir/crashes/$name"
@@ -30,5 +36,7 @@ amha_fuzz_run() {
     fi
     rm -rf "$work"
   done
+  [ "$count" -gt 0 ] || { echo "no fuzz targets were built"; return 1; }
+  amha_log "$count fuzz target(s) ran for ${seconds}s each"
   return $ok
 }
