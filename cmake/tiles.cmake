@@ -15,3 +15,7 @@ amha_add_gtest(amha_tiles_tests
     test/tiles/tiles_problem_test.cpp
     test/tiles/korf_search_test.cpp
   LIBS amha_tiles)
+
+# `amha tiles`: the paper's tile experiments.
+target_sources(amha PRIVATE src/cli/tiles_command.cpp src/cli/tiles_report.cpp)
+target_link_libraries(amha PRIVATE amha_tiles)
