@@ -1,1 +1,21 @@
-# Filled in by the tiles work (see issues).
+# Sliding-tile domain: the N x N puzzle as a SearchProblem, its heuristics and instances.
+add_library(amha_tiles
+  src/tiles/board.cpp
+  src/tiles/heuristics.cpp
+  src/tiles/instances.cpp
+  src/tiles/tiles_problem.cpp
+)
+target_link_libraries(amha_tiles PUBLIC amha_search)
+
+amha_add_gtest(amha_tiles_tests
+  SOURCES
+    test/tiles/board_test.cpp
+    test/tiles/heuristics_test.cpp
+    test/tiles/instances_test.cpp
+    test/tiles/tiles_problem_test.cpp
+    test/tiles/korf_search_test.cpp
+  LIBS amha_tiles)
+
+# `amha tiles`: the paper's tile experiments.
+target_sources(amha PRIVATE src/cli/tiles_command.cpp src/cli/tiles_report.cpp)
+target_link_libraries(amha PRIVATE amha_tiles)

@@ -1,0 +1,203 @@
+#include "tiles_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace amha {
+namespace cli {
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  if (v.size() % 2 == 1) return v[m];
+  if (!std::isfinite(v[m - 1]) || !std::isfinite(v[m])) return v[m];
+  return 0.5 * (v[m - 1] + v[m]);
+}
+
+std::string num(double v, int precision = 3) {
+  if (std::isnan(v)) return "-";
+  if (std::isinf(v)) return "inf";
+  char buf[32];
+  if (std::fabs(v) >= 1e5) {
+    std::snprintf(buf, sizeof(buf), "%.3g", v);
+  } else {
+    std::snprintf(buf, sizeof(buf), "%.*f", precision, v);
+  }
+  return buf;
+}
+
+std::string rate(double v) {
+  char buf[32];
+  if (v >= 1e6) {
+    std::snprintf(buf, sizeof(buf), "%.2fM", v / 1e6);
+  } else {
+    std::snprintf(buf, sizeof(buf), "%.0fk", v / 1e3);
+  }
+  return buf;
+}
+
+const char* kHeader[] = {"algorithm", "success %",  "T_initial s", "T_final s", "eps_initial",
+                         "eps_final", "cert_final", "cost_final",  "exp/s",     "bytes/state",
+                         "states"};
+
+std::vector<std::vector<std::string>> rows(const std::vector<AlgorithmSummary>& s) {
+  std::vector<std::vector<std::string>> out;
+  for (const AlgorithmSummary& a : s) {
+    const bool any = a.solved > 0;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::string eps_init = any ? num(a.eps_initial, 2) : "-";
+    if (any && a.eps_initial_finite < a.solved) {
+      eps_init = a.eps_initial_finite > 0 ? num(a.eps_initial, 2) + " (" +
+                                                std::to_string(a.solved - a.eps_initial_finite) +
+                                                " inf)"
+                                          : "inf";
+    }
+    char success[48];
+    std::snprintf(success, sizeof(success), "%.1f (%d/%d)", a.success_rate(), a.solved, a.runs);
+    out.push_back({algorithmName(a.algorithm), success, num(any ? a.t_initial : nan),
+                   num(any ? a.t_final : nan), eps_init, num(any ? a.eps_final : nan, 2),
+                   num(any ? a.certified_final : nan, 2), num(any ? a.cost_final : nan, 1),
+                   rate(a.expansions_per_s), num(a.bytes_per_state, 1), num(a.peak_states, 0)});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
+                                        const std::vector<Algorithm>& algorithms) {
+  std::vector<AlgorithmSummary> out;
+  for (Algorithm alg : algorithms) {
+    AlgorithmSummary a;
+    a.algorithm = alg;
+    double expansions = 0, seconds = 0;
+    std::vector<double> t_init, cert;
+    for (const TilesRun& r : runs) {
+      if (r.algorithm != alg) continue;
+      const SearchResult& res = r.result;
+      ++a.runs;
+      expansions += static_cast<double>(res.expansions);
+      seconds += res.elapsed_s;
+      if (res.peak_states > 0) {
+        a.bytes_per_state += static_cast<double>(res.peak_memory_bytes) / res.peak_states;
+      }
+      a.peak_states += static_cast<double>(res.peak_states);
+      a.proven_optimal += res.status == SearchStatus::kProvenOptimal;
+      if (!res.hasSolution()) continue;
+      ++a.solved;
+      const Solution& first = res.solutions.front();
+      const Solution& last = res.solutions.back();
+      a.t_initial += first.elapsed_s;
+      a.t_final += last.elapsed_s;
+      if (std::isfinite(first.nominal_bound)) {
+        a.eps_initial += first.nominal_bound;
+        ++a.eps_initial_finite;
+      }
+      a.eps_final += last.nominal_bound;
+      a.certified_final += last.certified_bound;
+      a.cost_final += static_cast<double>(last.cost);
+      t_init.push_back(first.elapsed_s);
+      cert.push_back(last.certified_bound);
+    }
+    if (a.runs > 0) {
+      a.bytes_per_state /= a.runs;
+      a.peak_states /= a.runs;
+    }
+    if (a.solved > 0) {
+      a.t_initial /= a.solved;
+      a.t_final /= a.solved;
+      a.eps_final /= a.solved;
+      a.certified_final /= a.solved;
+      a.cost_final /= a.solved;
+      a.eps_initial = a.eps_initial_finite > 0 ? a.eps_initial / a.eps_initial_finite
+                                               : std::numeric_limits<double>::infinity();
+    }
+    a.median_t_initial = median(t_init);
+    a.median_certified_final = median(cert);
+    a.expansions_per_s = seconds > 0 ? expansions / seconds : 0.0;
+    out.push_back(a);
+  }
+  return out;
+}
+
+std::string formatTable(const std::vector<AlgorithmSummary>& s) {
+  const auto body = rows(s);
+  std::vector<std::size_t> width;
+  for (const char* h : kHeader) width.push_back(std::string(h).size());
+  for (const auto& r : body) {
+    for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
+  }
+  std::ostringstream out;
+  auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (i > 0) out << "  ";
+      const std::string pad(width[i] - cells[i].size(), ' ');
+      out << (i == 0 ? cells[i] + pad : pad + cells[i]);
+    }
+    out << "\n";
+  };
+  line(std::vector<std::string>(std::begin(kHeader), std::end(kHeader)));
+  for (const auto& r : body) line(r);
+  return out.str();
+}
+
+std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s) {
+  std::ostringstream out;
+  out << "|";
+  for (const char* h : kHeader) out << " " << h << " |";
+  out << "\n|";
+  for (std::size_t i = 0; i < std::size(kHeader); ++i) out << (i == 0 ? "---|" : "---:|");
+  out << "\n";
+  for (const auto& r : rows(s)) {
+    out << "|";
+    for (const auto& c : r) out << " " << c << " |";
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::vector<PlotSeries> medianBoundCurves(const std::vector<TilesRun>& runs,
+                                          const std::vector<Algorithm>& algorithms,
+                                          double time_limit) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // Log-spaced grid from 1 ms (or limit / 10^4) to the time limit.
+  const double t0 = std::min(1e-3, time_limit / 1e4);
+  std::vector<double> grid;
+  for (int i = 0; i <= 400; ++i) grid.push_back(t0 * std::pow(time_limit / t0, i / 400.0));
+  std::vector<PlotSeries> out;
+  for (Algorithm alg : algorithms) {
+    PlotSeries s;
+    s.label = algorithmName(alg);
+    double last = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> best;
+    for (double t : grid) {
+      best.clear();
+      for (const TilesRun& r : runs) {
+        if (r.algorithm != alg) continue;
+        double b = inf;
+        for (const Solution& sol : r.result.solutions) {
+          if (sol.elapsed_s <= t) b = std::min(b, sol.certified_bound);
+        }
+        best.push_back(b);
+      }
+      if (best.empty()) break;
+      const double m = median(best);
+      if (!(m == last) || t == grid.back()) {
+        s.x.push_back(t);
+        s.y.push_back(m);
+        last = m;
+      }
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace cli
+}  // namespace amha

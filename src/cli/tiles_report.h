@@ -1,0 +1,56 @@
+// Summaries of `amha tiles` runs: the paper's table (success rate, T_initial, T_final,
+// eps_initial, eps_final) plus certified bound, final cost, speed and memory per algorithm,
+// and the median certified bound vs time curves for the plot.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "amha_planner/search/planner.h"
+#include "line_plot.h"
+
+namespace amha {
+namespace cli {
+
+struct TilesRun {
+  std::string instance;
+  Algorithm algorithm = Algorithm::kAmhaStar;
+  std::optional<int> optimal;
+  SearchResult result;  // solution paths may have been dropped after verification
+};
+
+/// Means are over the runs that found a solution ("solved"); speed and memory over all runs.
+struct AlgorithmSummary {
+  Algorithm algorithm = Algorithm::kAmhaStar;
+  int runs = 0, solved = 0;
+  double t_initial = 0, t_final = 0;        ///< mean seconds to the first / last solution
+  double eps_initial = 0, eps_final = 0;    ///< mean nominal bound of the first / last solution
+  int eps_initial_finite = 0;               ///< solved runs whose first nominal bound is finite
+  double certified_final = 0;               ///< mean certified bound of the last solution
+  double cost_final = 0;                    ///< mean cost of the last solution
+  double median_t_initial = 0, median_certified_final = 0;
+  double expansions_per_s = 0;              ///< total expansions / total search time
+  double bytes_per_state = 0;               ///< mean of peak_memory_bytes / peak_states
+  double peak_states = 0;                   ///< mean states stored at the end of a run
+  int proven_optimal = 0;                   ///< runs that ended proving optimality
+  double success_rate() const { return runs > 0 ? 100.0 * solved / runs : 0.0; }
+};
+
+std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
+                                        const std::vector<Algorithm>& algorithms);
+
+/// Aligned plain-text table (for the terminal).
+std::string formatTable(const std::vector<AlgorithmSummary>& s);
+/// The same as a Markdown table.
+std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s);
+
+/// Per algorithm: at each time t (log grid up to time_limit), the median over instances of the
+/// best certified bound found by t (infinite until half of the instances have a solution).
+/// Points are emitted where the median changes, plus one at the time limit.
+std::vector<PlotSeries> medianBoundCurves(const std::vector<TilesRun>& runs,
+                                          const std::vector<Algorithm>& algorithms,
+                                          double time_limit);
+
+}  // namespace cli
+}  // namespace amha

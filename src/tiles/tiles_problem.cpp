@@ -1,0 +1,260 @@
+#include "amha_planner/tiles/tiles_problem.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+namespace amha {
+namespace tiles {
+
+namespace {
+
+// Per-state word: MD (10 bits; at most 720 on 9x9), LC/2 (8 bits; at most 144), MT (7 bits),
+// blank position (7 bits).
+constexpr std::uint32_t packInfo(int md, int lc_half, int mt, int blank) {
+  return static_cast<std::uint32_t>(md) | static_cast<std::uint32_t>(lc_half) << 10 |
+         static_cast<std::uint32_t>(mt) << 18 | static_cast<std::uint32_t>(blank) << 25;
+}
+constexpr int infoMd(std::uint32_t i) { return static_cast<int>(i & 1023u); }
+constexpr int infoLcHalf(std::uint32_t i) { return static_cast<int>((i >> 10) & 255u); }
+constexpr int infoMt(std::uint32_t i) { return static_cast<int>((i >> 18) & 127u); }
+constexpr int infoBlank(std::uint32_t i) { return static_cast<int>(i >> 25); }
+
+// W 64-bit words a board, B bits a tile.
+template <int W, int B>
+class TilesSpace final : public TilesProblem {
+ public:
+  TilesSpace(const Board& start, std::vector<TermWeights> weights)
+      : TilesProblem(start.size, std::move(weights)), n_(start.size), n2_(start.size * start.size) {
+    static_assert(B <= 8 && W >= 1, "layout");
+    for (int p = 0; p < n2_; ++p) {
+      const int r = p / n_, c = p % n_;
+      int k = 0;
+      if (r > 0) neighbours_[p][k++] = static_cast<std::uint8_t>(p - n_);
+      if (r < n_ - 1) neighbours_[p][k++] = static_cast<std::uint8_t>(p + n_);
+      if (c > 0) neighbours_[p][k++] = static_cast<std::uint8_t>(p - 1);
+      if (c < n_ - 1) neighbours_[p][k++] = static_cast<std::uint8_t>(p + 1);
+      num_neighbours_[p] = static_cast<std::uint8_t>(k);
+      for (int t = 0; t < n2_; ++t) {
+        dist_[t * n2_ + p] = static_cast<std::uint8_t>(std::abs(r - t / n_) + std::abs(c - t % n_));
+      }
+    }
+    slots_.assign(std::size_t{1} << 12, kEmpty);
+    const Board goal = goalBoard(n_);
+    start_ = insertBoard(start);
+    goal_ = insertBoard(goal);
+  }
+
+  StateId start() const override { return start_; }
+  StateId goal() const override { return goal_; }
+  std::size_t numStates() const override { return count_; }
+
+  void successors(StateId s, std::vector<Edge>& out) override {
+    out.clear();
+    std::uint64_t parent[W], child[W];
+    std::memcpy(parent, words(s), sizeof(parent));
+    const std::uint32_t info = infoOf(s);
+    const int b = infoBlank(info);
+    unpack(parent, board_);
+    for (int k = 0; k < num_neighbours_[b]; ++k) {
+      const int p = neighbours_[b][k];
+      const int t = board_[p];
+      std::memcpy(child, parent, sizeof(child));
+      setField(child, b, static_cast<std::uint32_t>(t));
+      setField(child, p, 0);
+      const std::uint64_t h = hashWords(child);
+      std::size_t slot = h & mask_;
+      StateId id = kEmpty;
+      for (;; slot = (slot + 1) & mask_) {
+        const StateId cand = slots_[slot];
+        if (cand == kEmpty) break;
+        if (std::memcmp(words(cand), child, sizeof(child)) == 0) {
+          id = cand;
+          break;
+        }
+      }
+      if (id == kEmpty) id = insertAt(slot, child, childInfo(info, b, p, t));
+      out.push_back(Edge{id, 1});
+    }
+  }
+
+  void heuristics(StateId s, HeuristicValue* h, std::size_t count) override {
+    const HeuristicTerms t = terms(s);
+    if (count > 0) h[0] = anchorValue(t);
+    for (std::size_t i = 1; i < count; ++i) h[i] = weightedValue(t, weights_[i - 1]);
+  }
+
+  Board board(StateId s) const override {
+    Board b;
+    b.size = n_;
+    b.tiles.resize(static_cast<std::size_t>(n2_));
+    unpack(words(s), b.tiles.data());
+    return b;
+  }
+
+  HeuristicTerms terms(StateId s) const override {
+    const std::uint32_t i = infoOf(s);
+    return HeuristicTerms{infoMd(i), 2 * infoLcHalf(i), infoMt(i)};
+  }
+
+  std::size_t arenaBytes() const override {
+    return chunks_.size() * kChunkStates * (sizeof(std::uint64_t) * W + sizeof(std::uint32_t)) +
+           chunks_.capacity() * sizeof(Chunk);
+  }
+  std::size_t tableBytes() const override { return slots_.capacity() * sizeof(StateId); }
+
+ private:
+  static constexpr StateId kEmpty = 0xFFFFFFFFu;
+  static constexpr int kChunkBits = 16;
+  static constexpr std::size_t kChunkStates = std::size_t{1} << kChunkBits;
+  static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << B) - 1;
+
+  struct Chunk {
+    std::unique_ptr<std::uint64_t[]> words;
+    std::unique_ptr<std::uint32_t[]> info;
+  };
+
+  const std::uint64_t* words(StateId s) const {
+    return chunks_[s >> kChunkBits].words.get() + (s & (kChunkStates - 1)) * W;
+  }
+  std::uint32_t infoOf(StateId s) const {
+    return chunks_[s >> kChunkBits].info[s & (kChunkStates - 1)];
+  }
+
+  static std::uint32_t getField(const std::uint64_t* w, int i) {
+    const int bit = i * B, wi = bit >> 6, off = bit & 63;
+    std::uint64_t v = w[wi] >> off;
+    if (off + B > 64) v |= w[wi + 1] << (64 - off);
+    return static_cast<std::uint32_t>(v & kFieldMask);
+  }
+  static void setField(std::uint64_t* w, int i, std::uint32_t val) {
+    const int bit = i * B, wi = bit >> 6, off = bit & 63;
+    w[wi] = (w[wi] & ~(kFieldMask << off)) | (static_cast<std::uint64_t>(val) << off);
+    if (off + B > 64) {
+      const int spill = off + B - 64;  // bits in the next word
+      const std::uint64_t m = (std::uint64_t{1} << spill) - 1;
+      w[wi + 1] = (w[wi + 1] & ~m) | (static_cast<std::uint64_t>(val) >> (64 - off));
+    }
+  }
+  void unpack(const std::uint64_t* w, std::uint8_t* tiles) const {
+    for (int i = 0; i < n2_; ++i) tiles[i] = static_cast<std::uint8_t>(getField(w, i));
+  }
+
+  static std::uint64_t hashWords(const std::uint64_t* w) {
+    std::uint64_t h = 0x9E3779B97F4A7C15ull;
+    for (int i = 0; i < W; ++i) {
+      h = (h ^ w[i]) * 0xff51afd7ed558ccdull;
+      h ^= h >> 32;
+    }
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 29;
+    return h;
+  }
+
+  // MD, LC and MT of the child reached by moving tile t from p into the blank at b, from the
+  // parent's values (board_ holds the parent).
+  std::uint32_t childInfo(std::uint32_t info, int b, int p, int t) {
+    const int md = infoMd(info) + dist_[t * n2_ + b] - dist_[t * n2_ + p];
+    const int mt = infoMt(info) + (t != b) - (t != p);
+    int lc_half = infoLcHalf(info);
+    const bool horizontal = (b / n_) == (p / n_);
+    // A horizontal move keeps the order within the row and changes the column contents of
+    // col(p) and col(b), but only t's goal column can gain or lose a tile that belongs in it.
+    const int goal_line = horizontal ? t % n_ : t / n_;
+    const int from_line = horizontal ? p % n_ : p / n_;
+    const int to_line = horizontal ? b % n_ : b / n_;
+    if (goal_line == from_line || goal_line == to_line) {
+      const bool row = !horizontal;
+      const int before = lineConflictRemovals(board_, n_, row, goal_line);
+      board_[b] = static_cast<std::uint8_t>(t);
+      board_[p] = 0;
+      const int after = lineConflictRemovals(board_, n_, row, goal_line);
+      board_[p] = static_cast<std::uint8_t>(t);
+      board_[b] = 0;
+      lc_half += after - before;
+    }
+    return packInfo(md, lc_half, mt, p);
+  }
+
+  StateId insertBoard(const Board& b) {
+    std::uint64_t w[W] = {};
+    for (int i = 0; i < n2_; ++i) setField(w, i, b.tiles[i]);
+    std::size_t slot = hashWords(w) & mask_;
+    for (; slots_[slot] != kEmpty; slot = (slot + 1) & mask_) {
+      if (std::memcmp(words(slots_[slot]), w, sizeof(w)) == 0) return slots_[slot];
+    }
+    const HeuristicTerms t = heuristicTerms(b);
+    return insertAt(slot, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)));
+  }
+
+  StateId insertAt(std::size_t slot, const std::uint64_t* w, std::uint32_t info) {
+    const StateId id = static_cast<StateId>(count_);
+    if ((count_ & (kChunkStates - 1)) == 0) {
+      Chunk c;
+      c.words.reset(new std::uint64_t[kChunkStates * W]);
+      c.info.reset(new std::uint32_t[kChunkStates]);
+      chunks_.push_back(std::move(c));
+    }
+    Chunk& c = chunks_.back();
+    const std::size_t off = count_ & (kChunkStates - 1);
+    std::memcpy(c.words.get() + off * W, w, sizeof(std::uint64_t) * W);
+    c.info[off] = info;
+    ++count_;
+    slots_[slot] = id;
+    if (count_ * 10 > slots_.size() * 7) growTable();
+    return id;
+  }
+
+  void growTable() {
+    std::vector<StateId> bigger(slots_.size() * 2, kEmpty);
+    const std::size_t mask = bigger.size() - 1;
+    for (StateId id : slots_) {
+      if (id == kEmpty) continue;
+      std::size_t slot = hashWords(words(id)) & mask;
+      while (bigger[slot] != kEmpty) slot = (slot + 1) & mask;
+      bigger[slot] = id;
+    }
+    slots_.swap(bigger);
+    mask_ = mask;
+  }
+
+  const int n_, n2_;
+  StateId start_ = 0, goal_ = 0;
+  std::size_t count_ = 0;
+  std::vector<Chunk> chunks_;
+  std::vector<StateId> slots_;
+  std::size_t mask_ = (std::size_t{1} << 12) - 1;
+  std::uint8_t neighbours_[kMaxSize * kMaxSize][4] = {};
+  std::uint8_t num_neighbours_[kMaxSize * kMaxSize] = {};
+  std::uint8_t dist_[kMaxSize * kMaxSize * kMaxSize * kMaxSize] = {};  // dist_[t * n2 + p]
+  std::uint8_t board_[kMaxSize * kMaxSize] = {};  // the state being expanded, unpacked
+};
+
+}  // namespace
+
+std::unique_ptr<TilesProblem> TilesProblem::create(const Board& start,
+                                                   std::vector<TermWeights> weights) {
+  const std::string err = boardError(start);
+  if (!err.empty()) throw std::invalid_argument("invalid start board: " + err);
+  if (!isSolvable(start)) {
+    throw std::invalid_argument("unsolvable start board: " + toString(start));
+  }
+  for (const TermWeights& w : weights) {
+    if (!(w.md >= 0 && w.lc >= 0 && w.mt >= 0) || w.md > 1e6 || w.lc > 1e6 || w.mt > 1e6) {
+      throw std::invalid_argument("heuristic weights must be finite, >= 0 and <= 1e6");
+    }
+  }
+  switch (start.size) {
+    case 3:
+    case 4: return std::make_unique<TilesSpace<1, 4>>(start, std::move(weights));
+    case 5: return std::make_unique<TilesSpace<2, 5>>(start, std::move(weights));
+    case 6: return std::make_unique<TilesSpace<4, 6>>(start, std::move(weights));
+    case 7: return std::make_unique<TilesSpace<5, 6>>(start, std::move(weights));
+    case 8: return std::make_unique<TilesSpace<6, 6>>(start, std::move(weights));
+    default: return std::make_unique<TilesSpace<9, 7>>(start, std::move(weights));
+  }
+}
+
+}  // namespace tiles
+}  // namespace amha
