@@ -30,17 +30,21 @@ double AnaStar::eOf(const AnaKey& k) const {
 }
 
 std::size_t AnaStar::engineBytes() const {
-  return h0_.capacity() * sizeof(HeuristicValue) + generated_flag_.capacity() +
-         open_.memoryBytes();
+  return g_.capacity() * sizeof(Cost) + parent_.capacity() * sizeof(StateId) +
+         h0_.capacity() * sizeof(HeuristicValue) + generated_flag_.capacity() + open_.memoryBytes();
 }
 
 void AnaStar::growArrays(std::size_t cap) {
+  g_.resize(cap, kInfiniteCost);
+  parent_.resize(cap, kNoState);
   h0_.resize(cap, 0);
   generated_flag_.resize(cap, 0);
   open_.reserveIds(cap);
 }
 
 void AnaStar::resetArrays(std::size_t used) {
+  std::fill(g_.begin(), g_.begin() + std::min(used, g_.size()), kInfiniteCost);
+  std::fill(parent_.begin(), parent_.begin() + std::min(used, parent_.size()), kNoState);
   std::fill(generated_flag_.begin(),
             generated_flag_.begin() + std::min(used, generated_flag_.size()), 0);
   open_.clear();

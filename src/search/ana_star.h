@@ -32,12 +32,16 @@ class AnaStar : public SearchBase {
   bool improveSolution();  // true: a better goal was reached; false: OPEN empty or stopped
   double eOf(const AnaKey& k) const;
 
+  Cost gOf(StateId s) const override { return g_[s]; }
+  StateId parentOf(StateId s) const override { return parent_[s]; }
   std::size_t engineBytes() const override;
   void growArrays(std::size_t cap) override;
   void resetArrays(std::size_t used) override;
 
   Cost G_ = kInfiniteCost;
   double E_ = 0.0;
+  std::vector<Cost> g_;
+  std::vector<StateId> parent_;
   std::vector<HeuristicValue> h0_;
   std::vector<std::uint8_t> generated_flag_;
   IndexedHeap<AnaKey, AnaBefore> open_{AnaBefore{&G_}};

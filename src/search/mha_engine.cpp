@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -9,21 +10,25 @@ namespace amha {
 namespace detail {
 
 std::size_t MhaEngine::engineBytes() const {
-  std::size_t bytes = h_.capacity() * sizeof(HeuristicValue) + flags_.capacity() +
-                      incons_.capacity() * sizeof(StateId);
+  std::size_t bytes = rec_.capacity() * sizeof(std::uint32_t) + incons_.capacity() * sizeof(StateId);
   for (const auto& q : open_) bytes += q.memoryBytes();
   return bytes;
 }
 
 void MhaEngine::growArrays(std::size_t cap) {
-  h_.resize(cap * nh_, 0);
-  flags_.resize(cap, 0);
-  for (auto& q : open_) q.reserveIds(cap);
+  // Append fresh records (g = infinity, no parent, no flags, not in any heap).
+  rec_.reserve(cap * stride_);
+  while (rec_.size() < cap * stride_) rec_.insert(rec_.end(), fresh_.begin(), fresh_.end());
+  for (std::size_t i = 0; i < nh_; ++i) {
+    open_[i].bindPositions(rec_.data() + kHeaderWords + nh_ + i, stride_, cap);
+  }
 }
 
 void MhaEngine::resetArrays(std::size_t used) {
-  std::fill(flags_.begin(), flags_.begin() + std::min(used, flags_.size()), 0);
-  for (auto& q : open_) q.clear();
+  for (auto& q : open_) q.clear();  // before the records: clear() writes positions
+  for (std::size_t s = 0; s < used; ++s) {
+    std::copy(fresh_.begin(), fresh_.end(), rec_.begin() + static_cast<std::ptrdiff_t>(s * stride_));
+  }
   incons_.clear();
 }
 
@@ -31,13 +36,17 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
                             const SolutionCallback& on_solution) {
   const std::size_t nh = 1 + std::min(opt_.max_inadmissible, problem.numHeuristics() - 1);
   if (nh != nh_ || open_.size() != nh) {
-    // A different heuristic count changes the array layout: start from empty arrays.
+    // A different heuristic count changes the record layout: start from empty records.
     nh_ = nh;
+    stride_ = kHeaderWords + 2 * nh_;
     open_.assign(nh_, IndexedHeap<MhaKey>());
-    h_.clear();
-    flags_.clear();
-    g_.clear();
-    parent_.clear();
+    fresh_.assign(stride_, 0);
+    const Cost inf = kInfiniteCost;
+    std::memcpy(fresh_.data(), &inf, sizeof inf);
+    fresh_[2] = kNoState;
+    std::fill(fresh_.begin() + static_cast<std::ptrdiff_t>(kHeaderWords + nh_), fresh_.end(),
+              IndexedHeap<MhaKey>::kAbsent);
+    rec_.clear();
     capacity_ = 0;
     used_ = 0;
   }
@@ -50,11 +59,13 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
 
   const StateId start = problem.start();
   const StateId goal = problem.goal();
-  if (!ensure(start) || !ensure(goal) || !generate(start) || !generate(goal)) {
+  if (!ensure(start) || !ensure(goal)) {
     finish(SearchStatus::kMemoryLimit);
     return std::move(result_);
   }
-  g_[start] = 0;
+  generate(start);
+  generate(goal);
+  setG(start, 0);
   if (h(start, 0) != kInfiniteHeuristic) {
     const MhaKey k0 = key(start, 0);
     open_[0].push(start, k0);
@@ -70,7 +81,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
       status = stop_;
       break;
     }
-    if (g_[goal] >= kInfiniteCost) {  // OPEN_0 ran empty: nothing reaches the goal
+    if (g(goal) >= kInfiniteCost) {  // OPEN_0 ran empty: nothing reaches the goal
       status = SearchStatus::kNoSolution;
       break;
     }
@@ -99,13 +110,12 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   return std::move(result_);
 }
 
-bool MhaEngine::generate(StateId s) {
-  if (flags_[s] & kGenerated) return true;
+void MhaEngine::generate(StateId s) {
+  if (flags(s) & kGenerated) return;
   problem_->heuristics(s, hbuf_.data(), nh_);
-  std::copy(hbuf_.begin(), hbuf_.end(), h_.begin() + static_cast<std::ptrdiff_t>(s * nh_));
-  flags_[s] |= kGenerated;
+  std::copy(hbuf_.begin(), hbuf_.end(), rec(s) + kHeaderWords);
+  flags(s) |= kGenerated;
   ++generated_;
-  return true;
 }
 
 bool MhaEngine::improvePath() {
@@ -115,7 +125,7 @@ bool MhaEngine::improvePath() {
     if (open_[0].empty()) return true;
     const double min0 = open_[0].top().key.f;
     // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min().
-    if (static_cast<double>(g_[goal]) <= w2_ * min0) return true;
+    if (static_cast<double>(g(goal)) <= w2_ * min0) return true;
     if (limitHit()) return false;
     std::size_t q = 0;
     if (n_inad > 0) {
@@ -125,7 +135,7 @@ bool MhaEngine::improvePath() {
     }
     const StateId s = open_[q].top().id;
     expand(s, q);
-    flags_[s] |= (q == 0) ? kClosedAnch : kClosedInad;
+    flags(s) |= (q == 0) ? kClosedAnch : kClosedInad;
   }
 }
 
@@ -134,21 +144,25 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
   ++expansions_;
   if (observer_) observer_(s, queue, iteration_);
   problem_->successors(s, succ_);
-  const Cost gs = g_[s];
+  const Cost gs = g(s);
+  // Make room for new ids first (may move the records), then prefetch every successor's
+  // record so that their cache misses overlap instead of queueing up one by one.
+  for (const Edge& e : succ_) {
+    if (e.to >= capacity_ && !ensure(e.to)) return;  // memory cap: improvePath stops
+    if (e.to >= used_) used_ = static_cast<std::size_t>(e.to) + 1;
+  }
+  for (const Edge& e : succ_) __builtin_prefetch(rec(e.to), 1);
   for (const Edge& e : succ_) {
     const StateId t = e.to;
+    generate(t);
     const Cost ng = gs + e.cost;
-    if (t >= capacity_ || !(flags_[t] & kGenerated)) {
-      if (!ensure(t)) return;  // memory cap: the caller's limit check stops the search
-      generate(t);
-    }
-    if (ng >= g_[t]) continue;
-    g_[t] = ng;
-    parent_[t] = s;
-    const std::uint8_t f = flags_[t];
+    if (ng >= g(t)) continue;
+    setG(t, ng);
+    rec(t)[2] = s;
+    const std::uint32_t f = flags(t);
     if (f & kClosedAnch) {
       if (!(f & kIncons)) {
-        flags_[t] |= kIncons;
+        flags(t) |= kIncons;
         incons_.push_back(t);
       }
       continue;
@@ -171,7 +185,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
 void MhaEngine::prepareNextIteration() {
   // Lines 38-40: move INCONS into OPEN_0, then re-key OPEN_0 with the new w1.
   for (StateId s : incons_) {
-    flags_[s] &= static_cast<std::uint8_t>(~kIncons);
+    flags(s) &= ~static_cast<std::uint32_t>(kIncons);
     if (h(s, 0) != kInfiniteHeuristic) open_[0].appendUnordered(s, MhaKey{0.0, 0});
   }
   incons_.clear();
@@ -192,8 +206,8 @@ void MhaEngine::prepareNextIteration() {
 }
 
 void MhaEngine::clearClosed() {
-  const std::uint8_t keep = static_cast<std::uint8_t>(~(kClosedAnch | kClosedInad));
-  for (std::size_t s = 0; s < used_; ++s) flags_[s] &= keep;
+  const std::uint32_t keep = ~static_cast<std::uint32_t>(kClosedAnch | kClosedInad);
+  for (std::size_t s = 0; s < used_; ++s) flags(static_cast<StateId>(s)) &= keep;
 }
 
 Cost MhaEngine::lowerBound() const {
@@ -206,7 +220,7 @@ Cost MhaEngine::lowerBound() const {
   Cost lb = kInfiniteCost;
   auto consider = [&](StateId s) {
     const HeuristicValue h0 = h(s, 0);
-    if (h0 != kInfiniteHeuristic) lb = std::min(lb, g_[s] + static_cast<Cost>(h0));
+    if (h0 != kInfiniteHeuristic) lb = std::min(lb, g(s) + static_cast<Cost>(h0));
   };
   for (const auto& e : open_[0].entries()) consider(e.id);
   for (StateId s : incons_) consider(s);
@@ -218,7 +232,7 @@ void MhaEngine::checkInvariants() const {
   for (std::size_t i = 0; i < nh_; ++i) {
     for (const auto& e : open_[i].entries()) {
       const StateId s = e.id;
-      if (flags_[s] & kClosedAnch) fail("closed state in an OPEN queue");
+      if (flags(s) & kClosedAnch) fail("closed state in an OPEN queue");
       if (std::abs(e.key.f - key(s, i).f) > 1e-9 * std::max(1.0, e.key.f)) {
         fail("stale key in OPEN_" + std::to_string(i));
       }
@@ -229,7 +243,7 @@ void MhaEngine::checkInvariants() const {
     }
   }
   for (StateId s : incons_) {
-    if (!(flags_[s] & kClosedAnch)) fail("INCONS state not in CLOSED_anch");
+    if (!(flags(s) & kClosedAnch)) fail("INCONS state not in CLOSED_anch");
   }
 }
 

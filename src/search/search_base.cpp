@@ -16,29 +16,26 @@ void SearchBase::begin(SearchProblem& problem, const SearchLimits& limits,
   stop_ = SearchStatus::kNoSolution;
   expansions_ = 0;
   generated_ = 0;
-  const std::size_t used = std::min(used_, capacity_);
-  std::fill(g_.begin(), g_.begin() + used, kInfiniteCost);
-  std::fill(parent_.begin(), parent_.begin() + used, kNoState);
-  resetArrays(used);
+  resetArrays(std::min(used_, capacity_));
   used_ = 0;
 }
 
 bool SearchBase::grow(StateId id) {
   std::size_t cap = std::max<std::size_t>(capacity_ * 2, 1024);
   while (cap <= id) cap *= 2;
-  // Refuse growth that would break the memory cap, before allocating.
+  // Refuse growth that would break the memory cap, before allocating; near the cap, grow once
+  // to the largest capacity that still fits (never one state at a time: that is quadratic).
   const std::size_t per_state = capacity_ > 0 ? (engineBytes() + capacity_ - 1) / capacity_ : 64;
-  if (limits_.max_memory_bytes != SearchLimits().max_memory_bytes &&
-      problem_->memoryBytes() + cap * per_state > limits_.max_memory_bytes) {
-    // Try the exact size needed before giving up.
-    cap = static_cast<std::size_t>(id) + 1;
-    if (problem_->memoryBytes() + cap * per_state > limits_.max_memory_bytes) {
+  const std::size_t cap_bytes = limits_.max_memory_bytes;
+  if (cap_bytes != SearchLimits().max_memory_bytes) {
+    const std::size_t domain = problem_->memoryBytes();
+    const std::size_t fit = domain < cap_bytes ? (cap_bytes - domain) / per_state : 0;
+    if (fit <= id) {
       stopWith(SearchStatus::kMemoryLimit);
       return false;
     }
+    cap = std::min(cap, fit);
   }
-  g_.resize(cap, kInfiniteCost);
-  parent_.resize(cap, kNoState);
   growArrays(cap);
   capacity_ = cap;
   used_ = static_cast<std::size_t>(id) + 1;
@@ -46,8 +43,7 @@ bool SearchBase::grow(StateId id) {
 }
 
 std::size_t SearchBase::memoryBytes() const {
-  return problem_->memoryBytes() + engineBytes() + g_.capacity() * sizeof(Cost) +
-         parent_.capacity() * sizeof(StateId);
+  return problem_->memoryBytes() + engineBytes();
 }
 
 bool SearchBase::slowLimitCheck() {
@@ -67,7 +63,7 @@ void SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
   Solution sol;
   // Parent chains are acyclic (g strictly decreases towards the start since edge costs are
   // >= 1), but bound the walk anyway so a domain that breaks the contract cannot hang us.
-  for (StateId s = p.goal(); s != kNoState; s = parent_[s]) {
+  for (StateId s = p.goal(); s != kNoState; s = parentOf(s)) {
     sol.path.push_back(s);
     if (sol.path.size() > generated_ + 1) throw std::logic_error("cycle in parent pointers");
   }

@@ -1,5 +1,4 @@
-// State shared by the engines: per-state g / parent arrays that grow with the dense ids, the
-// limit checks (time, expansions, states, memory, cancel), and turning a parent chain into a
+// State shared by the engines: growth of the per-state data with the dense ids, the limit checks (time, expansions, states, memory, cancel), and turning a parent chain into a
 // reported Solution with its certified bound.
 #pragma once
 
@@ -53,11 +52,15 @@ class SearchBase {
   /// `lower_bound` is a proven lower bound on the optimal cost (kInfiniteCost if none).
   void report(double nominal_bound, Cost lower_bound, int iteration, double w1, double w2);
 
+  /// g-value and parent of a state (the engines store them in their own layouts).
+  virtual Cost gOf(StateId s) const = 0;
+  virtual StateId parentOf(StateId s) const = 0;
   /// Bytes of the subclass's own arrays, for the memory cap.
   virtual std::size_t engineBytes() const = 0;
   /// Called when the arrays grow to `new_capacity` ids; subclasses grow theirs.
   virtual void growArrays(std::size_t new_capacity) = 0;
-  /// Resets the subclass's per-state data for ids [0, used) at the start of a search.
+  /// Resets the subclass's per-state data for ids [0, used) at the start of a search
+  /// (g = infinity, no parent, nothing closed or queued).
   virtual void resetArrays(std::size_t used) = 0;
 
   std::size_t memoryBytes() const;
@@ -75,8 +78,6 @@ class SearchBase {
   std::size_t capacity_ = 0;   // ids addressable in the arrays
   std::size_t used_ = 0;       // 1 + the largest id touched in this search
 
-  std::vector<Cost> g_;
-  std::vector<StateId> parent_;
   std::vector<Edge> succ_;  // successor buffer, reused across expansions
 
  private:

@@ -53,7 +53,9 @@ TEST(Limits, TimeBudgetHonouredWithinMilliseconds) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(r.status, SearchStatus::kTimeLimit) << algorithmName(a);
     EXPECT_GE(took, 0.05);
-    EXPECT_LT(took, 0.05 + 0.02) << algorithmName(a);
+    // Wall clock on a shared machine: a loose sanity check. The tight guarantee is the
+    // deterministic check-interval test below.
+    EXPECT_LT(took, 0.05 + 0.05) << algorithmName(a);
     EXPECT_GT(r.expansions, 0u);
   }
 }
@@ -74,7 +76,38 @@ TEST(Limits, CancelFromAnotherThread) {
     const auto ended = std::chrono::steady_clock::now();
     canceller.join();
     EXPECT_EQ(r.status, SearchStatus::kCancelled) << algorithmName(a);
-    EXPECT_LT(std::chrono::duration<double>(ended - cancelled_at).count(), 0.02);
+    EXPECT_LT(std::chrono::duration<double>(ended - cancelled_at).count(), 0.05);
+  }
+}
+
+// Deterministic form of the two tests above: limits are checked at least every 64 expansions,
+// so a search stops within 64 expansions of the cancel flag being set (here by the problem
+// itself, at a known expansion). At ~1 us an expansion that is well under a millisecond.
+class CancellingGrid : public testing::EndlessGrid {
+ public:
+  CancellingGrid(std::atomic<bool>* flag, std::uint64_t at) : EndlessGrid(3), flag_(flag), at_(at) {}
+  void successors(StateId s, std::vector<Edge>& out) override {
+    if (++calls_ == at_) *flag_ = true;
+    EndlessGrid::successors(s, out);
+  }
+  std::uint64_t calls_ = 0;
+
+ private:
+  std::atomic<bool>* flag_;
+  std::uint64_t at_;
+};
+
+TEST(Limits, CancelObservedWithin64Expansions) {
+  for (Algorithm a : kAll) {
+    for (std::uint64_t at : {1u, 100u, 12345u}) {
+      std::atomic<bool> cancel{false};
+      CancellingGrid grid(&cancel, at);
+      SearchLimits limits;
+      limits.cancel = &cancel;
+      const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+      EXPECT_EQ(r.status, SearchStatus::kCancelled) << algorithmName(a);
+      EXPECT_LE(r.expansions, at + 64) << algorithmName(a) << " cancelled at " << at;
+    }
   }
 }
 

@@ -1,5 +1,7 @@
 // Indexed binary min-heap over dense state ids: O(log n) insert / decrease / increase / remove,
 // O(1) membership, and a bulk rebuild (O(n) heapify) for re-keying between anytime iterations.
+// Each id's position in the heap is kept either in the heap's own array or, to save cache
+// misses, inside the caller's per-state records (bindPositions: a base pointer and a stride).
 #pragma once
 
 #include <cstddef>
@@ -22,27 +24,41 @@ class IndexedHeap {
 
   explicit IndexedHeap(Less less = Less()) : less_(std::move(less)) {}
 
-  /// Makes ids [0, n) addressable. Call as the state space grows (amortised, not per push).
+  static constexpr std::uint32_t kAbsent = 0xFFFFFFFFu;
+
+  /// Makes ids [0, n) addressable in the heap's own position array. Call as the state space
+  /// grows (amortised, not per push).
   void reserveIds(std::size_t n) {
-    if (pos_.size() < n) pos_.resize(n, kAbsent);
+    if (own_pos_.size() < n) own_pos_.resize(n, kAbsent);
+    base_ = own_pos_.data();
+    stride_ = 1;
+    ids_ = own_pos_.size();
   }
-  std::size_t idCapacity() const { return pos_.size(); }
+
+  /// Keeps positions in caller-owned memory instead: id's slot is base[id * stride], which must
+  /// be kAbsent for ids not in the heap. Call again whenever that memory moves or grows.
+  void bindPositions(std::uint32_t* base, std::size_t stride, std::size_t ids) {
+    base_ = base;
+    stride_ = stride;
+    ids_ = ids;
+  }
+  std::size_t idCapacity() const { return ids_; }
 
   bool empty() const { return heap_.empty(); }
   std::size_t size() const { return heap_.size(); }
-  bool contains(StateId id) const { return id < pos_.size() && pos_[id] != kAbsent; }
+  bool contains(StateId id) const { return id < ids_ && pos(id) != kAbsent; }
   const Entry& top() const { return heap_.front(); }
-  const Key& keyOf(StateId id) const { return heap_[pos_[id]].key; }
+  const Key& keyOf(StateId id) const { return heap_[pos(id)].key; }
   const std::vector<Entry>& entries() const { return heap_; }
   Less& less() { return less_; }
 
   /// Inserts `id` or changes its key (up or down).
   void push(StateId id, const Key& key) {
-    std::uint32_t p = pos_[id];
+    std::uint32_t p = pos(id);
     if (p == kAbsent) {
       p = static_cast<std::uint32_t>(heap_.size());
       heap_.push_back(Entry{key, id});
-      pos_[id] = p;
+      pos(id) = p;
       siftUp(p);
       return;
     }
@@ -56,13 +72,13 @@ class IndexedHeap {
   }
 
   void remove(StateId id) {
-    const std::uint32_t p = pos_[id];
+    const std::uint32_t p = pos(id);
     if (p == kAbsent) return;
-    pos_[id] = kAbsent;
+    pos(id) = kAbsent;
     const std::uint32_t last = static_cast<std::uint32_t>(heap_.size() - 1);
     if (p != last) {
       heap_[p] = heap_[last];
-      pos_[heap_[p].id] = p;
+      pos(heap_[p].id) = p;
       heap_.pop_back();
       siftDown(p);
       siftUp(p);
@@ -78,13 +94,13 @@ class IndexedHeap {
   }
 
   void clear() {
-    for (const Entry& e : heap_) pos_[e.id] = kAbsent;
+    for (const Entry& e : heap_) pos(e.id) = kAbsent;
     heap_.clear();
   }
 
   /// Appends without restoring heap order; call rebuild() before the next top()/pop().
   void appendUnordered(StateId id, const Key& key) {
-    pos_[id] = static_cast<std::uint32_t>(heap_.size());
+    pos(id) = static_cast<std::uint32_t>(heap_.size());
     heap_.push_back(Entry{key, id});
   }
 
@@ -98,28 +114,26 @@ class IndexedHeap {
   /// Restores heap order (Floyd's heapify) after appendUnordered() or external key changes.
   void rebuild() {
     const std::size_t n = heap_.size();
-    for (std::size_t i = 0; i < n; ++i) pos_[heap_[i].id] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i) pos(heap_[i].id) = static_cast<std::uint32_t>(i);
     for (std::size_t i = n / 2; i-- > 0;) siftDown(static_cast<std::uint32_t>(i));
   }
 
   std::size_t memoryBytes() const {
-    return heap_.capacity() * sizeof(Entry) + pos_.capacity() * sizeof(std::uint32_t);
+    return heap_.capacity() * sizeof(Entry) + own_pos_.capacity() * sizeof(std::uint32_t);
   }
 
  private:
-  static constexpr std::uint32_t kAbsent = 0xFFFFFFFFu;
-
   void siftUp(std::uint32_t p) {
     Entry e = heap_[p];
     while (p > 0) {
       const std::uint32_t parent = (p - 1) / 2;
       if (!less_(e.key, heap_[parent].key)) break;
       heap_[p] = heap_[parent];
-      pos_[heap_[p].id] = p;
+      pos(heap_[p].id) = p;
       p = parent;
     }
     heap_[p] = e;
-    pos_[e.id] = p;
+    pos(e.id) = p;
   }
 
   void siftDown(std::uint32_t p) {
@@ -131,15 +145,21 @@ class IndexedHeap {
       if (c + 1 < n && less_(heap_[c + 1].key, heap_[c].key)) ++c;
       if (!less_(heap_[c].key, e.key)) break;
       heap_[p] = heap_[c];
-      pos_[heap_[p].id] = p;
+      pos(heap_[p].id) = p;
       p = c;
     }
     heap_[p] = e;
-    pos_[e.id] = p;
+    pos(e.id) = p;
   }
 
+  std::uint32_t& pos(StateId id) { return base_[static_cast<std::size_t>(id) * stride_]; }
+  std::uint32_t pos(StateId id) const { return base_[static_cast<std::size_t>(id) * stride_]; }
+
   std::vector<Entry> heap_;
-  std::vector<std::uint32_t> pos_;
+  std::vector<std::uint32_t> own_pos_;
+  std::uint32_t* base_ = nullptr;
+  std::size_t stride_ = 1;
+  std::size_t ids_ = 0;
   Less less_;
 };
 
