@@ -41,6 +41,11 @@ ros::Publisher g_map_pub;
 std::mutex g_solutions_mutex;
 std::vector<PlanSolution> g_solutions;
 
+void onSolution(const PlanSolution::ConstPtr& s) {
+  std::lock_guard<std::mutex> lock(g_solutions_mutex);
+  g_solutions.push_back(*s);
+}
+
 std::vector<PlanSolution> solutionsOf(std::uint32_t request_id, std::size_t expected) {
   for (int i = 0; i < 200; ++i) {
     {
@@ -491,11 +496,8 @@ int main(int argc, char** argv) {
   amha_planner::test::g_nh = &nh;
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  ros::Subscriber solutions = nh.subscribe<amha_planner::PlanSolution>(
-      "/planner/solutions", 1000, [](const amha_planner::PlanSolution::ConstPtr& s) {
-        std::lock_guard<std::mutex> lock(amha_planner::test::g_solutions_mutex);
-        amha_planner::test::g_solutions.push_back(*s);
-      });
+  ros::Subscriber solutions = nh.subscribe("/planner/solutions", 1000,
+                                            &amha_planner::test::onSolution);
   amha_planner::test::g_map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
   amha_planner::test::g_map_pub.publish(amha_planner::test::testMap());
   // Wait for the planner to adopt the map (the probe answers INVALID_GOAL once it has).

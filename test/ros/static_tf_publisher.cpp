@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     ROS_FATAL("usage: static_tf_publisher x y z yaw pitch roll parent child");
     return 2;
   }
+  ros::NodeHandle nh;  // starts the node (ros::Time::now() needs it)
   geometry_msgs::TransformStamped t;
   t.header.stamp = ros::Time::now();
   t.header.frame_id = args[7];
