@@ -1,1 +1,31 @@
-# Filled in by the lattice work (see issues).
+# The (x, y, theta) lattice domain: maps, motion primitives, footprints, heuristics and the
+# LatticePlanner facade (ROS-free), plus `amha plan` and `amha bench lattice`.
+find_package(yaml-cpp REQUIRED)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+
+add_library(amha_lattice
+  src/lattice/occupancy.cpp
+  src/lattice/map_server_map.cpp
+  src/lattice/movingai_map.cpp
+  src/lattice/sbpl_environment.cpp
+  src/lattice/primitive_set.cpp
+  src/lattice/mprim_reader.cpp
+  src/lattice/mprim_writer.cpp
+  src/lattice/primitive_generator.cpp
+  src/lattice/footprint.cpp
+  src/lattice/lattice_graph.cpp
+  src/lattice/heuristic_grids.cpp
+  src/lattice/lattice_problem.cpp
+  src/lattice/lattice_planner.cpp
+)
+target_include_directories(amha_lattice PUBLIC
+  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
+target_include_directories(amha_lattice SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
+target_link_libraries(amha_lattice PUBLIC amha_search PRIVATE yaml-cpp ${OpenCV_LIBS} Threads::Threads)
+
+target_sources(amha PRIVATE
+  src/cli/lattice_options.cpp
+  src/cli/lattice_image.cpp
+  src/cli/plan_command.cpp
+)
+target_link_libraries(amha PRIVATE amha_lattice)

@@ -75,10 +75,30 @@ struct LatticeConfig {
   std::vector<std::array<double, 2>> footprint;  ///< polygon (m, base frame); empty: a circle
   double robot_radius = 0.2;     ///< used when footprint is empty
   /// Edge cost = length x primitive multiplier x (1 + cost_penalty x worst cell cost / 252).
+  /// Precisely (integers, kCostUnitsPerMetre units): base = round(ceil(kCostUnitsPerMetre x
+  /// max(L, nominal_speed x |dtheta| / omega)) x multiplier), where L is the length of the
+  /// primitive's intermediate-pose polyline, dtheta its heading change and omega =
+  /// (pi / 4) / time_to_turn_45 (so turning in place is costed by time, as in SBPL); then
+  /// cost = base + ceil(base x Q[c] / 65536) with Q[c] = ceil(65536 x cost_penalty x c / 252)
+  /// and c the worst cost of the cells the robot's centre crosses. cost_penalty = 252 gives
+  /// SBPL's cost x (c + 1). See docs/lattice.md.
   double cost_penalty = 1.0;
   /// Inadmissible heuristics (0..3): 8-connected Dijkstra for a point robot, then the same on
   /// maps with passages narrower than the inscribed / circumscribed diameter blocked.
   int num_inadmissible = 3;
+
+  // ---- Added after the API freeze (defaults keep the original behaviour). ----
+  /// Robot speed (m/s) and the time to turn 45 degrees in place (s): SBPL's nominalvel and
+  /// timetoturn45degsinplace (these defaults are sbpl_lattice_planner's). They only matter
+  /// through the turning-time term of the edge cost above.
+  double nominal_speed = 0.4;
+  double time_to_turn_45 = 0.6;
+  /// Anchor heuristic: true = max(Euclidean, an admissible cost-aware 16-connected grid
+  /// Dijkstra whose step costs are scaled so it is a relaxation of the lattice); false = the
+  /// Euclidean distance alone (the paper's anchor). Both are admissible and consistent.
+  bool grid_anchor = true;
+  /// Goals whose heuristic grids are kept (each costs ~16 bytes per map cell).
+  int heuristic_cache_size = 2;
 };
 
 /// Why a query was refused before searching.
@@ -99,6 +119,9 @@ constexpr double kCostUnitsPerMetre = 1000.0;
 struct LatticeSolution {
   Solution search;            ///< ids, cost (units), bounds, timing, iteration, weights
   std::vector<Pose2D> poses;  ///< the path in the map frame, intermediate poses included
+  /// search.elapsed_s plus the time this plan() call spent computing heuristic grids
+  /// (added after the API freeze).
+  double elapsed_total_s = 0.0;
 };
 
 struct PlanResult {
@@ -106,6 +129,9 @@ struct PlanResult {
   std::string message;        ///< human-readable reason when error != kNone
   SearchResult search;        ///< status and every solution (state ids)
   std::vector<LatticeSolution> solutions;  ///< the same solutions, as poses
+  /// Seconds this call spent computing the goal's heuristic grids (0 when they were cached);
+  /// it counts against limits.time_limit_s (added after the API freeze).
+  double heuristic_seconds = 0.0;
 };
 
 /// A lattice planner for one map and one robot. Construction does the per-map work (loads or

@@ -1,0 +1,96 @@
+// 2-D Dijkstra grids from the goal, the heuristics of the lattice search:
+//  - the anchor's grid: a 16-connected, cost-aware Dijkstra over the cells the robot's centre
+//    may occupy, with step costs scaled so that it is a relaxation of the lattice (admissible
+//    and consistent, see LatticeGraph::gridAnchorUnitsPerCell);
+//  - the inadmissible ones (the paper's): an 8-connected Dijkstra for a point robot, and the
+//    same on free space opened by the inscribed and by the circumscribed radius.
+// Costs are integers, so a radix heap (monotone integer queue) replaces the binary heap; the
+// grids are independent and computed in parallel threads.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/search/types.h"
+
+namespace amha {
+namespace lattice {
+
+class LatticeGraph;
+
+/// A grid move: from a cell to (dx, dy), allowed only if every required cell (the cells the
+/// straight segment between the two centres meets, both ends included) is passable; its cost
+/// uses the worst of those cells.
+struct GridMove {
+  int dx = 0, dy = 0;
+  double length = 0.0;  ///< cells
+  std::vector<CellOffset> required;
+};
+
+/// The 8 neighbours (connectivity 8) or the 8 neighbours and the 8 knight moves (16).
+std::vector<GridMove> gridMoves(int connectivity);
+
+/// Shortest walk (in cells of length) from (0, 0) to `to` using `moves` whose required cells
+/// all lie in `cells`; infinity if there is none.
+double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves);
+
+/// Unreachable cells of a grid hold this.
+constexpr std::uint32_t kUnreachable = 0xFFFFFFFFu;
+/// Grid values are in 1/kGridFraction cost units (each step is rounded down, so the finer unit
+/// keeps the rounding loss small); heuristic value = grid value / kGridFraction.
+constexpr std::uint32_t kGridFraction = 4;
+
+/// One Dijkstra grid, stored with a 2-cell blocked border (padded width width + 4).
+struct DistanceGrid {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> dist;
+  std::uint32_t at(int x, int y) const { return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)]; }
+};
+
+/// Which grid; the anchor grid exists only with LatticeConfig::grid_anchor.
+enum class GridKind { kAnchor = 0, kPointRobot = 1, kInscribedOpening = 2, kCircumscribedOpening = 3 };
+constexpr int kNumGridKinds = 4;
+
+/// The grids for one goal cell.
+struct GoalHeuristics {
+  int goal_x = 0, goal_y = 0;
+  std::shared_ptr<const DistanceGrid> grids[kNumGridKinds];  ///< null if not needed
+  double seconds = 0.0;  ///< wall time to compute them
+  std::size_t bytes() const;
+};
+
+/// Per-map data the grids need (levels with blocked cells, step-cost tables), built once.
+class HeuristicGridBuilder {
+ public:
+  explicit HeuristicGridBuilder(const LatticeGraph& graph);
+  /// Computes the grids the configuration asks for, in parallel (up to `threads`, 0 = all
+  /// hardware threads).
+  std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, unsigned threads = 0) const;
+  /// One grid alone (for tests and timing).
+  DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
+  bool needed(GridKind kind) const { return needed_[static_cast<int>(kind)]; }
+
+ private:
+  struct Kind {
+    std::vector<std::uint8_t> level;  // padded; 255 = blocked, else the cost class 0..252
+    std::vector<std::int64_t> move_offsets;
+    std::vector<std::int64_t> required;  // per move: kMaxRequired offsets (the two ends excluded)
+    std::vector<int> required_count;
+    std::vector<std::uint32_t> step;     // per move, 256 cost classes
+  };
+  static constexpr int kMaxRequired = 4;
+  void buildKind(int k, int connectivity, double units_per_cell, const std::vector<std::uint8_t>* mask,
+                 std::uint8_t max_cost_class);
+  void run(const Kind& kind, int goal_x, int goal_y, std::uint32_t* dist) const;
+
+  const LatticeGraph& graph_;
+  int width_ = 0, height_ = 0;
+  Kind kinds_[kNumGridKinds];
+  bool needed_[kNumGridKinds] = {false, false, false, false};
+  int alias_[kNumGridKinds] = {0, 1, 2, 3};  // a kind computed as another (identical) kind
+};
+
+}  // namespace lattice
+}  // namespace amha

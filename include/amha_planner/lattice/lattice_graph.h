@@ -1,0 +1,133 @@
+// The (x, y, theta) lattice on one map for one robot: primitives turned into actions with their
+// cells as linear offsets, integer edge costs, collision checks and pose <-> state conversion.
+// Immutable after construction, so any number of searches may share it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/motion_primitives.h"
+
+namespace amha {
+namespace lattice {
+
+/// A primitive ready for the search.
+struct LatticeAction {
+  int dx = 0, dy = 0;      ///< end cell relative to the start cell
+  int end_heading = 0;
+  int primitive = 0;       ///< index into PrimitiveSet::primitives
+  Cost base_cost = 1;      ///< cost on free cells (see LatticeConfig::cost_penalty)
+  std::int64_t end_offset = 0;  ///< dy * width + dx
+  int min_dx = 0, max_dx = 0, min_dy = 0, max_dy = 0;  ///< box of every cell it touches
+  /// Largest distance (cells) from the start cell to a swept cell: if the start cell is
+  /// farther than this from every lethal cell, no swept cell can be lethal.
+  float sweep_radius = 0.0f;
+  std::uint32_t centre_begin = 0, centre_end = 0;  ///< into LatticeGraph::offsets()
+  std::uint32_t swept_begin = 0, swept_end = 0;
+};
+
+constexpr Cost kInvalidEdge = -1;
+
+class LatticeGraph {
+ public:
+  /// Loads/generates primitives, validates them against the map, precomputes every action's
+  /// cells and costs, the clearance map, and the free-space openings for the heuristics.
+  /// Throws LatticeError.
+  LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config);
+
+  const GridMap& map() const { return *map_; }
+  const LatticeConfig& config() const { return config_; }
+  const PrimitiveSet& primitives() const { return primitives_; }
+  const RobotFootprint& footprint() const { return footprint_; }
+  int width() const { return map_->width; }
+  int height() const { return map_->height; }
+  int numHeadings() const { return primitives_.num_headings; }
+
+  const LatticeAction* actionsBegin(int heading) const { return actions_.data() + action_index_[heading]; }
+  const LatticeAction* actionsEnd(int heading) const { return actions_.data() + action_index_[heading + 1]; }
+  const std::vector<LatticeAction>& actions() const { return actions_; }
+  const std::vector<std::int64_t>& offsets() const { return offsets_; }
+  /// Cell offsets (not linearised) of an action's centre and swept cells, for tools and tests.
+  const PrimitiveCells& actionCells(std::size_t action) const { return action_cells_[action]; }
+
+  /// Cost of taking `a` from cell (x, y), or kInvalidEdge if it leaves the map, its centre
+  /// crosses an inscribed/lethal/unknown cell, or its footprint sweeps a lethal/unknown cell.
+  Cost edgeCost(int x, int y, const LatticeAction& a) const {
+    if (x + a.min_dx < 0 || x + a.max_dx >= map_->width || y + a.min_dy < 0 || y + a.max_dy >= map_->height) {
+      return kInvalidEdge;
+    }
+    const std::int64_t base = static_cast<std::int64_t>(y) * map_->width + x;
+    const std::uint8_t* cost = map_->cost.data() + base;
+    unsigned worst = 0;
+    for (std::uint32_t k = a.centre_begin; k < a.centre_end; ++k) {
+      const unsigned c = cost[offsets_[k]];
+      if (c >= kInscribedCost) return kInvalidEdge;
+      worst = c > worst ? c : worst;
+    }
+    if (clearance_[base] <= a.sweep_radius) {
+      for (std::uint32_t k = a.swept_begin; k < a.swept_end; ++k) {
+        if (cost[offsets_[k]] >= kLethalCost) return kInvalidEdge;
+      }
+    }
+    return a.base_cost + ((a.base_cost * penalty_q_[worst] + 65535) >> 16);
+  }
+  /// The edge cost formula alone (for validators): base cost and the worst centre-cell cost.
+  Cost costWithPenalty(Cost base_cost, unsigned worst_cell_cost) const {
+    return base_cost + ((base_cost * penalty_q_[worst_cell_cost] + 65535) >> 16);
+  }
+
+  /// The robot at rest at (x, y, heading): inside the map, centre cell below inscribed, no
+  /// lethal/unknown cell under the footprint.
+  bool stateValid(int x, int y, int heading) const;
+
+  /// Map-frame pose -> lattice state (cell containing the point, nearest heading). Returns
+  /// false if the point is outside the map.
+  bool poseToState(const Pose2D& pose, int* x, int* y, int* heading) const;
+  /// Centre of cell (x, y) with heading `heading`, in the map frame.
+  Pose2D stateToPose(int x, int y, int heading) const;
+  /// A pose relative to cell (x, y)'s centre (grid frame) -> map frame.
+  Pose2D cellPoseToMap(int x, int y, const Pose2D& relative) const;
+
+  /// Anchor scales (cost units per cell of distance): Euclidean, and the grid relaxation's.
+  double euclidUnitsPerCell() const { return euclid_per_cell_; }
+  double gridAnchorUnitsPerCell() const { return grid_anchor_per_cell_; }
+  double cheapestUnitsPerCell() const { return cheapest_per_cell_; }
+  /// Turning terms (cost units per radian of heading still to change) that may be added to the
+  /// Euclidean / grid anchor without losing consistency (see computeAnchorScales).
+  double euclidTurnUnitsPerRadian() const { return euclid_turn_per_rad_; }
+  double gridTurnUnitsPerRadian() const { return grid_turn_per_rad_; }
+
+  /// Distance (cells) from each cell centre to the nearest lethal/unknown cell centre.
+  const std::vector<float>& clearance() const { return clearance_; }
+  /// Free space (1) opened by the inscribed (index 0) / circumscribed (index 1) radius.
+  const std::vector<std::uint8_t>& openedFree(int which) const { return opened_[which]; }
+  /// True when the two openings are the same cells (then the heuristics share one grid).
+  bool openingsEqual() const { return openings_equal_; }
+
+ private:
+  void buildActions();
+  void buildClearanceAndOpenings();
+  void computeAnchorScales();
+
+  std::shared_ptr<const GridMap> map_;
+  LatticeConfig config_;
+  PrimitiveSet primitives_;
+  RobotFootprint footprint_;
+  std::vector<LatticeAction> actions_;
+  std::vector<std::size_t> action_index_;  // numHeadings() + 1 entries
+  std::vector<PrimitiveCells> action_cells_;
+  std::vector<std::int64_t> offsets_;
+  std::vector<std::vector<CellOffset>> rest_cells_;  // footprint at rest, per heading
+  std::vector<std::int64_t> penalty_q_;              // 256 entries: Q[c]
+  std::vector<float> clearance_;
+  std::vector<std::uint8_t> opened_[2];
+  bool openings_equal_ = false;
+  double euclid_per_cell_ = 0.0, grid_anchor_per_cell_ = 0.0, cheapest_per_cell_ = 0.0;
+  double euclid_turn_per_rad_ = 0.0, grid_turn_per_rad_ = 0.0;
+};
+
+}  // namespace lattice
+}  // namespace amha

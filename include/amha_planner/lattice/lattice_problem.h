@@ -1,0 +1,72 @@
+// The lattice as a SearchProblem: (x, y, heading) states numbered densely in discovery order
+// through a paged index over width x height x headings (pages of 8 x 8 cells, allocated on
+// first touch), successors from the precomputed actions, heuristics from the goal's grids.
+// One instance per search; the LatticeGraph and GoalHeuristics it reads are shared.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/lattice_graph.h"
+#include "amha_planner/search/problem.h"
+
+namespace amha {
+namespace lattice {
+
+struct LatticeState {
+  int x = 0, y = 0, heading = 0;
+  bool operator==(const LatticeState& o) const { return x == o.x && y == o.y && heading == o.heading; }
+};
+
+class LatticeProblem final : public SearchProblem {
+ public:
+  /// `heuristics` must be for the goal's cell. num_inadmissible: 0..3 grids after the anchor.
+  LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
+                 LatticeState start, LatticeState goal, int num_inadmissible);
+  ~LatticeProblem() override;
+
+  StateId start() const override { return start_; }
+  StateId goal() const override { return goal_; }
+  void successors(StateId s, std::vector<Edge>& out) override;
+  std::size_t numHeuristics() const override { return 1 + static_cast<std::size_t>(num_inadmissible_); }
+  void heuristics(StateId s, HeuristicValue* h, std::size_t count) override;
+  std::size_t memoryBytes() const override;
+
+  LatticeState state(StateId s) const {
+    const std::uint64_t v = states_[s];
+    const std::uint32_t cell = static_cast<std::uint32_t>(v >> 16);
+    return {static_cast<int>(cell % width_), static_cast<int>(cell / width_), static_cast<int>(v & 0xFFFF)};
+  }
+  std::size_t numStates() const { return states_.size(); }
+  /// The id of a state, creating it if new.
+  StateId id(int x, int y, int heading);
+  /// The cheapest valid action from `from` that ends in `to` (nullptr if none), and its cost.
+  const LatticeAction* actionBetween(StateId from, StateId to, Cost* cost) const;
+  /// Anchor value (admissible and consistent): with the grid anchor, the larger of
+  /// floor(Euclidean + turning term) and floor(grid + turning term); without it, the Euclidean
+  /// distance alone (the paper's anchor). See LatticeGraph::computeAnchorScales.
+  HeuristicValue anchor(int x, int y, int heading) const;
+
+ private:
+  const LatticeGraph& graph_;
+  std::shared_ptr<const GoalHeuristics> heur_;
+  const DistanceGrid* grids_[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
+  int num_inadmissible_;
+  int width_, headings_;
+  int tiles_x_;
+  std::size_t page_entries_;
+  std::vector<std::uint32_t*> pages_;                 // per 8 x 8 tile, null until touched
+  std::vector<std::unique_ptr<std::uint32_t[]>> slabs_;  // page storage, 64 pages a slab
+  std::size_t slab_used_ = 0;
+  std::vector<std::uint64_t> states_;  // cell << 16 | heading
+  StateId start_ = kNoState, goal_ = kNoState;
+  int goal_x_ = 0, goal_y_ = 0;
+  std::vector<double> turn_euclid_, turn_grid_;  // turning terms per heading (cost units)
+  static constexpr int kTile = 8;
+  static constexpr std::size_t kPagesPerSlab = 64;
+};
+
+}  // namespace lattice
+}  // namespace amha

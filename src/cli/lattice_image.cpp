@@ -1,0 +1,83 @@
+#include "lattice_image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace amha {
+namespace cli {
+
+namespace {
+constexpr int kShift = 4;  // sub-pixel bits for OpenCV drawing
+}
+
+void writePlanImage(const std::string& png, const lattice::GridMap& map,
+                    const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
+                    const lattice::Pose2D& start, const lattice::Pose2D& goal) {
+  const int scale = std::max(1, std::min(16, 800 / std::max(map.width, map.height)));
+  cv::Mat img(map.height * scale, map.width * scale, CV_8UC3);
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      const int c = map.at(x, y);
+      cv::Vec3b colour;
+      if (c == lattice::kUnknownCost) {
+        colour = {200, 185, 185};
+      } else if (c == lattice::kLethalCost) {
+        colour = {0, 0, 0};
+      } else if (c == lattice::kInscribedCost) {
+        colour = {110, 110, 150};
+      } else {
+        const int v = 255 - c * 120 / 252;
+        colour = {static_cast<uchar>(v), static_cast<uchar>(v), static_cast<uchar>(v)};
+      }
+      img(cv::Rect(x * scale, (map.height - 1 - y) * scale, scale, scale)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
+    }
+  }
+  const double co = std::cos(map.origin_yaw), so = std::sin(map.origin_yaw);
+  auto pixel = [&](double wx, double wy) {
+    const double dx = wx - map.origin_x, dy = wy - map.origin_y;
+    const double gx = (co * dx + so * dy) / map.resolution, gy = (-so * dx + co * dy) / map.resolution;
+    return cv::Point(static_cast<int>(std::lround(gx * scale * (1 << kShift))),
+                     static_cast<int>(std::lround((map.height - gy) * scale * (1 << kShift))));
+  };
+  const int thick = std::max(1, scale / 3);
+  // Footprint along the last path, about every half metre (and at its ends).
+  if (!paths.empty() && footprint_at) {
+    const auto& last = paths.back();
+    double since = 1e9;
+    for (std::size_t i = 0; i < last.size(); ++i) {
+      if (i > 0) since += std::hypot(last[i].x - last[i - 1].x, last[i].y - last[i - 1].y);
+      if (since < 0.5 && i + 1 != last.size()) continue;
+      since = 0.0;
+      std::vector<cv::Point> poly;
+      for (const auto& v : footprint_at(last[i])) poly.push_back(pixel(v[0], v[1]));
+      if (poly.size() >= 3) cv::polylines(img, std::vector<std::vector<cv::Point>>{poly}, true, cv::Scalar(90, 170, 60), 1, cv::LINE_AA, kShift);
+    }
+  }
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const double t = paths.size() == 1 ? 1.0 : static_cast<double>(k) / (paths.size() - 1);
+    // Dark blue (first) to bright orange (last).
+    const cv::Scalar colour(180 * (1 - t) + 0 * t, 40 * (1 - t) + 140 * t, 60 * (1 - t) + 255 * t);
+    std::vector<cv::Point> line;
+    for (const auto& p : paths[k]) line.push_back(pixel(p.x, p.y));
+    if (line.size() >= 2) {
+      cv::polylines(img, std::vector<std::vector<cv::Point>>{line}, false, colour, k + 1 == paths.size() ? thick + 1 : thick, cv::LINE_AA, kShift);
+    }
+  }
+  auto marker = [&](const lattice::Pose2D& p, const cv::Scalar& colour) {
+    const cv::Point c = pixel(p.x, p.y);
+    const int r = std::max(3, 2 * scale) << kShift;
+    cv::circle(img, c, r, colour, 2, cv::LINE_AA, kShift);
+    const cv::Point tip(c.x + static_cast<int>(r * 2 * std::cos(p.theta)), c.y - static_cast<int>(r * 2 * std::sin(p.theta)));
+    cv::line(img, c, tip, colour, 2, cv::LINE_AA, kShift);
+  };
+  marker(start, cv::Scalar(0, 160, 0));
+  marker(goal, cv::Scalar(0, 0, 220));
+  if (!cv::imwrite(png, img)) throw std::runtime_error("cannot write " + png);
+}
+
+}  // namespace cli
+}  // namespace amha

@@ -1,0 +1,110 @@
+#include "lattice_options.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "exit_codes.h"
+
+namespace amha {
+namespace cli {
+
+using lattice::LatticeError;
+
+void LatticeOptions::addTo(CLI::App& app) {
+  app.add_option("--map", map_file, "map file: .yaml (map_server), .map (Moving AI), .cfg (SBPL)")->required();
+  app.add_option("--resolution", resolution, "metres per cell of a Moving AI map (default 0.1)");
+  app.add_option("--upscale", upscale, "cells per Moving AI map character, per side (default 1)");
+  app.add_flag("--unknown-free", unknown_free, "treat unknown cells of map_server maps as free");
+  app.add_option("--mprim", mprim, "SBPL .mprim motion primitives (default: generate them)");
+  app.add_option("--turning-radius", turning_radius, "generated primitives: minimum turning radius in m (default 0.5)");
+  app.add_option("--headings", headings, "generated primitives: headings, a multiple of 8 (default 16)");
+  app.add_flag("--reverse", reverse, "generated primitives: allow backward motion");
+  app.add_flag("--no-turn-in-place", no_turn_in_place, "generated primitives: no turns on the spot");
+  app.add_option("--footprint", footprint, "robot polygon \"x,y;x,y;...\" in metres (base frame)");
+  app.add_option("--radius", radius, "round robot radius in m (default 0.2; 0 = point robot)");
+  app.add_option("--cost-penalty", cost_penalty,
+                 "edge cost factor 1 + P x cell cost / 252 (default 1; 252 for .cfg maps = SBPL's cost x (c+1))");
+  app.add_option("--nominal-speed", nominal_speed, "m/s, for costing turns (default 0.4; .cfg: the file's)");
+  app.add_option("--turn-time-45", turn_time_45, "seconds to turn 45 degrees in place (default 0.6; .cfg: the file's)");
+  app.add_option("--inadmissible", inadmissible, "number of inadmissible heuristics 0..3 (default 3)");
+  app.add_flag("--euclidean-anchor", euclidean_anchor, "anchor = Euclidean distance only (the paper's), no grid");
+}
+
+lattice::Pose2D parsePose(const std::string& text, const char* what) {
+  std::istringstream in(text);
+  lattice::Pose2D p;
+  char c1 = 0, c2 = 0;
+  if (!(in >> p.x >> c1 >> p.y >> c2 >> p.theta) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof()) {
+    throw std::invalid_argument(std::string(what) + " '" + text + "' is not x,y,theta");
+  }
+  return p;
+}
+
+namespace {
+
+std::vector<std::array<double, 2>> parseFootprint(const std::string& text) {
+  std::vector<std::array<double, 2>> poly;
+  std::istringstream in(text);
+  std::string point;
+  while (std::getline(in, point, ';')) {
+    if (point.find_first_not_of(" \t") == std::string::npos) continue;
+    std::istringstream ps(point);
+    double x = 0, y = 0;
+    char comma = 0;
+    if (!(ps >> x >> comma >> y) || comma != ',' || !(ps >> std::ws).eof()) {
+      throw std::invalid_argument("--footprint point '" + point + "' is not x,y");
+    }
+    poly.push_back({x, y});
+  }
+  return poly;
+}
+
+}  // namespace
+
+LoadedLattice loadLattice(const LatticeOptions& o) {
+  LoadedLattice out;
+  lattice::OccupancyConversion conv;
+  conv.unknown_is_free = o.unknown_free;
+  out.map = std::make_shared<lattice::GridMap>(
+      lattice::loadMapFile(o.map_file, o.resolution, o.upscale, conv, &out.env));
+  const std::string& f = o.map_file;
+  out.is_sbpl_env = f.size() >= 4 && f.compare(f.size() - 4, 4, ".cfg") == 0;
+
+  lattice::LatticeConfig& c = out.config;
+  if (!o.mprim.empty() && (o.turning_radius > 0.0 || o.reverse || o.no_turn_in_place)) {
+    throw std::invalid_argument("--mprim cannot be combined with the generator options (--turning-radius, --reverse, --no-turn-in-place)");
+  }
+  c.mprim_file = o.mprim;
+  if (o.turning_radius > 0.0) c.turning_radius = o.turning_radius;
+  c.num_headings = o.headings;
+  c.allow_reverse = o.reverse;
+  c.turn_in_place = !o.no_turn_in_place;
+  if (!o.footprint.empty() && o.radius >= 0.0) throw std::invalid_argument("give --footprint or --radius, not both");
+  if (!o.footprint.empty()) c.footprint = parseFootprint(o.footprint);
+  if (o.radius >= 0.0) c.robot_radius = o.radius;
+  if (out.is_sbpl_env) {
+    c.cost_penalty = 252.0;
+    c.nominal_speed = out.env.nominal_speed;
+    c.time_to_turn_45 = out.env.time_to_turn_45;
+  }
+  if (o.cost_penalty >= 0.0) c.cost_penalty = o.cost_penalty;
+  if (o.nominal_speed >= 0.0) c.nominal_speed = o.nominal_speed;
+  if (o.turn_time_45 >= 0.0) c.time_to_turn_45 = o.turn_time_45;
+  c.num_inadmissible = o.inadmissible;
+  c.grid_anchor = !o.euclidean_anchor;
+  return out;
+}
+
+int exitCodeFor(const LatticeError& e) {
+  switch (e.kind()) {
+    case LatticeError::Kind::kMap: return kExitBadMap;
+    case LatticeError::Kind::kPrimitives: return kExitBadPrimitives;
+    case LatticeError::Kind::kRobot:
+    case LatticeError::Kind::kConfig: return kExitUsage;
+  }
+  return kExitInternal;
+}
+
+}  // namespace cli
+}  // namespace amha

@@ -1,0 +1,283 @@
+// Dijkstra grids from the goal with a radix heap, several in parallel.
+#include "amha_planner/lattice/heuristic_grids.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "amha_planner/lattice/lattice_graph.h"
+
+namespace amha {
+namespace lattice {
+
+namespace {
+
+// Monotone priority queue for integer keys (Ahuja et al.'s radix heap): pops never go below
+// the last popped key, which Dijkstra guarantees.
+class RadixHeap {
+ public:
+  bool empty() const { return size_ == 0; }
+  void push(std::uint32_t key, std::uint32_t value) {
+    buckets_[bucket(key)].push_back({key, value});
+    ++size_;
+  }
+  std::pair<std::uint32_t, std::uint32_t> pop() {
+    if (buckets_[0].empty()) {
+      int i = 1;
+      while (buckets_[i].empty()) ++i;
+      std::uint32_t m = std::numeric_limits<std::uint32_t>::max();
+      for (const auto& e : buckets_[i]) m = std::min(m, e.first);
+      last_ = m;
+      for (const auto& e : buckets_[i]) buckets_[bucket(e.first)].push_back(e);
+      buckets_[i].clear();
+    }
+    const auto e = buckets_[0].back();
+    buckets_[0].pop_back();
+    --size_;
+    return e;
+  }
+
+ private:
+  int bucket(std::uint32_t key) const { return key == last_ ? 0 : 32 - __builtin_clz(key ^ last_); }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> buckets_[33];
+  std::uint32_t last_ = 0;
+  std::size_t size_ = 0;
+};
+
+}  // namespace
+
+std::vector<GridMove> gridMoves(int connectivity) {
+  std::vector<GridMove> moves;
+  auto add = [&](int dx, int dy) {
+    GridMove m;
+    m.dx = dx;
+    m.dy = dy;
+    m.length = std::hypot(dx, dy);
+    rasterizeSegment({0.5, 0.5}, {dx + 0.5, dy + 0.5}, m.required);
+    uniqueCells(m.required);
+    moves.push_back(std::move(m));
+  };
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (dx != 0 || dy != 0) add(dx, dy);
+    }
+  }
+  if (connectivity == 16) {
+    const int k[8][2] = {{2, 1}, {1, 2}, {-1, 2}, {-2, 1}, {-2, -1}, {-1, -2}, {1, -2}, {2, -1}};
+    for (const auto& d : k) add(d[0], d[1]);
+  }
+  return moves;
+}
+
+double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves) {
+  std::vector<CellOffset> cs = cells;
+  uniqueCells(cs);
+  auto index = [&](CellOffset c) {
+    const auto it = std::lower_bound(cs.begin(), cs.end(), c);
+    return it != cs.end() && *it == c ? static_cast<std::size_t>(it - cs.begin()) : cs.size();
+  };
+  const std::size_t m = cs.size();
+  const std::size_t src = index({0, 0}), dst = index(to);
+  if (src == m || dst == m) return std::numeric_limits<double>::infinity();
+  std::vector<double> d(m, std::numeric_limits<double>::infinity());
+  std::vector<char> done(m, 0);
+  d[src] = 0.0;
+  for (;;) {
+    std::size_t u = m;
+    for (std::size_t i = 0; i < m; ++i) {
+      if (!done[i] && std::isfinite(d[i]) && (u == m || d[i] < d[u])) u = i;
+    }
+    if (u == m) break;
+    if (u == dst) return d[u];
+    done[u] = 1;
+    for (const GridMove& mv : moves) {
+      bool ok = true;
+      for (const CellOffset& r : mv.required) {
+        if (index({cs[u].dx + r.dx, cs[u].dy + r.dy}) == m) {
+          ok = false;
+          break;
+        }
+      }
+      if (!ok) continue;
+      const std::size_t v = index({cs[u].dx + mv.dx, cs[u].dy + mv.dy});
+      if (v < m) d[v] = std::min(d[v], d[u] + mv.length);
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+std::size_t GoalHeuristics::bytes() const {
+  std::size_t b = sizeof(*this);
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    bool shared = false;
+    for (int j = 0; j < k; ++j) shared = shared || grids[j] == grids[k];
+    if (grids[k] && !shared) b += grids[k]->dist.capacity() * sizeof(std::uint32_t);
+  }
+  return b;
+}
+
+HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
+    : graph_(graph), width_(graph.width()), height_(graph.height()) {
+  const LatticeConfig& c = graph.config();
+  needed_[0] = c.grid_anchor;
+  needed_[1] = c.num_inadmissible >= 1;
+  needed_[2] = c.num_inadmissible >= 2;
+  needed_[3] = c.num_inadmissible >= 3;
+  // The anchor's grid: cells the centre may occupy (below inscribed), admissible scale.
+  if (needed_[0]) buildKind(0, 16, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1);
+  const double s = graph.cheapestUnitsPerCell();
+  if (needed_[1]) buildKind(1, 8, s, nullptr, kLethalCost - 1);
+  if (needed_[2]) {
+    buildKind(2, 8, s, &graph.openedFree(0), kLethalCost - 1);
+    if (needed_[1] && kinds_[2].level == kinds_[1].level) alias_[2] = 1;
+  }
+  if (needed_[3]) {
+    if (needed_[2] && graph.openingsEqual()) {
+      alias_[3] = alias_[2];
+    } else {
+      buildKind(3, 8, s, &graph.openedFree(1), kLethalCost - 1);
+      if (needed_[1] && kinds_[3].level == kinds_[1].level) alias_[3] = 1;
+    }
+  }
+  // Identical kinds share their data (and their result).
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    if (alias_[k] != k) kinds_[k] = Kind();
+  }
+}
+
+void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_cell,
+                                     const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class) {
+  Kind& kind = kinds_[k];
+  const int pw = width_ + 4, ph = height_ + 4;
+  const std::vector<std::uint8_t>& cost = graph_.map().cost;
+  kind.level.assign(static_cast<std::size_t>(pw) * ph, 255);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * width_ + x;
+      const std::uint8_t c = cost[i];
+      const bool passable = c <= max_cost_class && (mask == nullptr || (*mask)[i]);
+      kind.level[static_cast<std::size_t>(y + 2) * pw + (x + 2)] = passable ? std::min<std::uint8_t>(c, 252) : 255;
+    }
+  }
+  const std::vector<GridMove> moves = gridMoves(connectivity);
+  const double pen = graph_.config().cost_penalty;
+  kind.move_offsets.clear();
+  kind.required.clear();
+  kind.required_count.clear();
+  kind.step.assign(moves.size() * 256, 0);
+  for (std::size_t m = 0; m < moves.size(); ++m) {
+    const GridMove& mv = moves[m];
+    kind.move_offsets.push_back(static_cast<std::int64_t>(mv.dy) * pw + mv.dx);
+    int count = 0;
+    for (const CellOffset& r : mv.required) {
+      if ((r.dx == 0 && r.dy == 0) || (r.dx == mv.dx && r.dy == mv.dy)) continue;
+      kind.required.push_back(static_cast<std::int64_t>(r.dy) * pw + r.dx);
+      ++count;
+    }
+    while (count < kMaxRequired) {  // pad with the move's own end (always checked anyway)
+      kind.required.push_back(kind.move_offsets.back());
+      ++count;
+    }
+    kind.required_count.push_back(static_cast<int>(mv.required.size()) - 2);
+    for (int c = 0; c < 256; ++c) {
+      const double step = units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+      kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));
+    }
+  }
+}
+
+void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* dist) const {
+  const int pw = width_ + 4;
+  const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
+  std::fill(dist, dist + total, kUnreachable);
+  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
+  const std::uint8_t* level = kind.level.data();
+  if (level[goal] == 255) return;
+  const std::size_t nm = kind.move_offsets.size();
+  const std::int64_t* off = kind.move_offsets.data();
+  const std::int64_t* req = kind.required.data();
+  const int* req_count = kind.required_count.data();
+  const std::uint32_t* step = kind.step.data();
+  RadixHeap heap;
+  dist[goal] = 0;
+  heap.push(0, goal);
+  while (!heap.empty()) {
+    const auto [d, i] = heap.pop();
+    if (d != dist[i]) continue;
+    const unsigned li = level[i];
+    for (std::size_t m = 0; m < nm; ++m) {
+      const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + off[m]);
+      unsigned c = level[j];
+      if (c == 255) continue;
+      c = std::max(c, li);
+      const std::int64_t* r = req + m * kMaxRequired;
+      bool blocked = false;
+      for (int k = 0; k < req_count[m]; ++k) {
+        const unsigned lr = level[static_cast<std::int64_t>(i) + r[k]];
+        if (lr == 255) {
+          blocked = true;
+          break;
+        }
+        c = std::max(c, lr);
+      }
+      if (blocked) continue;
+      const std::uint64_t nd = static_cast<std::uint64_t>(d) + step[m * 256 + c];
+      if (nd < dist[j]) {
+        const std::uint32_t v = static_cast<std::uint32_t>(std::min<std::uint64_t>(nd, kUnreachable - 1));
+        dist[j] = v;
+        heap.push(v, static_cast<std::uint32_t>(j));
+      }
+    }
+  }
+}
+
+DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) const {
+  const int k = alias_[static_cast<int>(kind)];
+  DistanceGrid g;
+  g.width = width_;
+  g.height = height_;
+  g.dist.resize(static_cast<std::size_t>(width_ + 4) * (height_ + 4));
+  run(kinds_[k], gx, gy, g.dist.data());
+  return g;
+}
+
+std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, unsigned threads) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto out = std::make_shared<GoalHeuristics>();
+  out->goal_x = gx;
+  out->goal_y = gy;
+  std::vector<int> tasks;
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    if (needed_[k] && alias_[k] == k) tasks.push_back(k);
+  }
+  std::shared_ptr<DistanceGrid> result[kNumGridKinds];
+  for (int k : tasks) {
+    result[k] = std::make_shared<DistanceGrid>();
+    result[k]->width = width_;
+    result[k]->height = height_;
+    result[k]->dist.resize(static_cast<std::size_t>(width_ + 4) * (height_ + 4));
+  }
+  std::atomic<std::size_t> next{0};
+  auto worker = [&]() {
+    for (std::size_t t; (t = next.fetch_add(1)) < tasks.size();) {
+      run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist.data());
+    }
+  };
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t n = std::min<std::size_t>(threads, tasks.size());
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    if (needed_[k]) out->grids[k] = result[alias_[k]];
+  }
+  out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace lattice
+}  // namespace amha

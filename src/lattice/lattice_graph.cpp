@@ -1,0 +1,264 @@
+// Per-map precomputation of the lattice: actions, costs, clearance, openings, anchor scales.
+#include "amha_planner/lattice/lattice_graph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include "amha_planner/lattice/heuristic_grids.h"
+
+namespace amha {
+namespace lattice {
+
+namespace {
+
+[[noreturn]] void fail(LatticeError::Kind kind, const std::string& what) { throw LatticeError(kind, what); }
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void validateMap(const GridMap& m) {
+  const auto kind = LatticeError::Kind::kMap;
+  if (m.width <= 0 || m.height <= 0) fail(kind, "map: size " + std::to_string(m.width) + " x " + std::to_string(m.height) + " is not positive");
+  if (m.cost.size() != static_cast<std::size_t>(m.width) * m.height) fail(kind, "map: cost array size does not match width x height");
+  if (static_cast<std::size_t>(m.width) * m.height > (std::size_t{1} << 28)) fail(kind, "map: more than 2^28 cells");
+  if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) fail(kind, "map: resolution " + str(m.resolution) + " is not positive");
+  if (!std::isfinite(m.origin_x) || !std::isfinite(m.origin_y) || !std::isfinite(m.origin_yaw)) fail(kind, "map: origin is not finite");
+}
+
+void validateConfig(const LatticeConfig& c) {
+  const auto kind = LatticeError::Kind::kConfig;
+  if (c.num_inadmissible < 0 || c.num_inadmissible > 3) fail(kind, "num_inadmissible " + std::to_string(c.num_inadmissible) + " is not in 0..3");
+  if (!std::isfinite(c.cost_penalty) || c.cost_penalty < 0.0 || c.cost_penalty > 10000.0) fail(kind, "cost_penalty " + str(c.cost_penalty) + " is not in [0, 10000]");
+  if (!(c.nominal_speed > 0.0) || !std::isfinite(c.nominal_speed)) fail(kind, "nominal_speed " + str(c.nominal_speed) + " must be positive");
+  if (!(c.time_to_turn_45 >= 0.0) || !std::isfinite(c.time_to_turn_45)) fail(kind, "time_to_turn_45 " + str(c.time_to_turn_45) + " must not be negative");
+  if (c.heuristic_cache_size < 1) fail(kind, "heuristic_cache_size must be at least 1");
+}
+
+}  // namespace
+
+LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config)
+    : map_(std::move(map)), config_(config) {
+  if (!map_) fail(LatticeError::Kind::kMap, "map: null");
+  validateMap(*map_);
+  validateConfig(config_);
+  if (!config_.mprim_file.empty()) {
+    primitives_ = readMprimFile(config_.mprim_file, map_->resolution);
+  } else {
+    PrimitiveGeneratorOptions o;
+    o.resolution = map_->resolution;
+    o.num_headings = config_.num_headings;
+    o.turning_radius = config_.turning_radius;
+    o.allow_reverse = config_.allow_reverse;
+    o.turn_in_place = config_.turn_in_place;
+    primitives_ = generatePrimitives(o);
+  }
+  footprint_ = RobotFootprint::fromConfig(config_);
+  penalty_q_.resize(256);
+  for (int c = 0; c < 256; ++c) {
+    const double q = 65536.0 * config_.cost_penalty * std::min(c, 252) / 252.0;
+    penalty_q_[c] = static_cast<std::int64_t>(std::ceil(q - 1e-9));
+  }
+  buildActions();
+  buildClearanceAndOpenings();
+  computeAnchorScales();
+}
+
+void LatticeGraph::buildActions() {
+  const double res = map_->resolution;
+  const int n = primitives_.num_headings;
+  const double omega = config_.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.time_to_turn_45 : 0.0;
+  action_index_.assign(n + 1, 0);
+  for (int h = 0; h < n; ++h) {
+    action_index_[h] = actions_.size();
+    const auto r = primitives_.range(h);
+    for (std::size_t i = r.first; i < r.second; ++i) {
+      const MotionPrimitive& p = primitives_.primitives[i];
+      LatticeAction a;
+      a.dx = p.end_dx;
+      a.dy = p.end_dy;
+      a.end_heading = p.end_heading;
+      a.primitive = static_cast<int>(i);
+      a.end_offset = static_cast<std::int64_t>(a.dy) * map_->width + a.dx;
+      double length = 0.0;
+      for (std::size_t k = 1; k < p.poses.size(); ++k) {
+        length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
+      }
+      const double turn = angleDistance(primitives_.heading_angles[p.start_heading], primitives_.heading_angles[p.end_heading]);
+      const double turn_as_distance = omega > 0.0 ? config_.nominal_speed * turn / omega : 0.0;
+      const double units = std::ceil(kCostUnitsPerMetre * std::max(length, turn_as_distance) - 1e-6);
+      a.base_cost = std::max<Cost>(1, std::llround(units * p.cost_multiplier));
+
+      PrimitiveCells cells = primitiveCells(footprint_, p.poses, res);
+      a.min_dx = a.max_dx = a.min_dy = a.max_dy = 0;
+      auto box = [&](const CellOffset& c) {
+        a.min_dx = std::min(a.min_dx, c.dx);
+        a.max_dx = std::max(a.max_dx, c.dx);
+        a.min_dy = std::min(a.min_dy, c.dy);
+        a.max_dy = std::max(a.max_dy, c.dy);
+      };
+      a.centre_begin = static_cast<std::uint32_t>(offsets_.size());
+      for (const CellOffset& c : cells.centre) {
+        box(c);
+        offsets_.push_back(static_cast<std::int64_t>(c.dy) * map_->width + c.dx);
+      }
+      a.centre_end = static_cast<std::uint32_t>(offsets_.size());
+      a.swept_begin = a.centre_end;
+      double radius = 0.0;
+      for (const CellOffset& c : cells.swept) {
+        box(c);
+        radius = std::max(radius, std::hypot(c.dx, c.dy));
+        offsets_.push_back(static_cast<std::int64_t>(c.dy) * map_->width + c.dx);
+      }
+      a.swept_end = static_cast<std::uint32_t>(offsets_.size());
+      // Rounded up so that "clearance > sweep_radius" really proves every swept cell free.
+      a.sweep_radius = static_cast<float>(radius) * (1.0f + 1e-6f) + 1e-6f;
+      actions_.push_back(a);
+      action_cells_.push_back(std::move(cells));
+    }
+  }
+  action_index_[n] = actions_.size();
+  rest_cells_.resize(n);
+  for (int h = 0; h < n; ++h) {
+    if (!footprint_.polygon.empty()) {
+      rest_cells_[h] = footprintCells(footprint_, Pose2D{0.0, 0.0, primitives_.heading_angles[h]}, res);
+    }
+  }
+}
+
+void LatticeGraph::buildClearanceAndOpenings() {
+  const int w = map_->width, h = map_->height;
+  // Free space with a blocked border: leaving the map is as bad as hitting a wall.
+  cv::Mat free(h + 2, w + 2, CV_8U, cv::Scalar(0));
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* c = &map_->cost[static_cast<std::size_t>(y) * w];
+    std::uint8_t* row = free.ptr<std::uint8_t>(y + 1) + 1;
+    for (int x = 0; x < w; ++x) row[x] = c[x] < kLethalCost ? 255 : 0;
+  }
+  cv::Mat dist;
+  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  clearance_.resize(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y) {
+    const float* d = dist.ptr<float>(y + 1) + 1;
+    std::copy(d, d + w, clearance_.begin() + static_cast<std::ptrdiff_t>(y) * w);
+  }
+  if (config_.num_inadmissible < 2) return;
+  // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
+  // obstacle. Both steps are exact Euclidean distance transforms.
+  const double radii[2] = {footprint_.inscribed_radius, footprint_.circumscribed_radius};
+  for (int k = 0; k < 2; ++k) {
+    const double r = radii[k] / map_->resolution;
+    std::vector<std::uint8_t>& out = opened_[k];
+    out.assign(static_cast<std::size_t>(w) * h, 0);
+    if (r <= 0.0) {
+      for (std::size_t i = 0; i < out.size(); ++i) out[i] = map_->cost[i] < kLethalCost;
+      continue;
+    }
+    cv::Mat not_eroded(h + 2, w + 2, CV_8U);
+    for (int y = 0; y < h + 2; ++y) {
+      const float* d = dist.ptr<float>(y);
+      std::uint8_t* o = not_eroded.ptr<std::uint8_t>(y);
+      for (int x = 0; x < w + 2; ++x) o[x] = d[x] > r ? 0 : 255;
+    }
+    cv::Mat d2;
+    cv::distanceTransform(not_eroded, d2, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+    for (int y = 0; y < h; ++y) {
+      const float* d = d2.ptr<float>(y + 1) + 1;
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        out[i] = d[x] <= r && map_->cost[i] < kLethalCost;
+      }
+    }
+  }
+  openings_equal_ = opened_[0] == opened_[1];
+}
+
+void LatticeGraph::computeAnchorScales() {
+  // Euclidean anchor: every action moves its end cell by |d| cells and costs at least its base
+  // cost, so h = floor(s |goal - cell|) with s <= base / |d| for every action is consistent:
+  // h(p) - h(q) <= ceil(s |p - q|) <= base <= cost(p, q) (integers), and h(goal) = 0.
+  //
+  // Grid anchor: a valid action's centre cells are all passable for the anchor grid and no
+  // costlier than its worst cell, so the grid has a walk from start to end cell inside them of
+  // length w (walkLength); with grid steps scaled by k <= base / w for every action, every
+  // lattice edge costs at least the grid distance between its ends times the same cell-cost
+  // factor, so the grid distance is admissible and consistent.
+  //
+  // Turning term: an action changes the heading by dtheta (radians), and the heading still to
+  // change, |theta - theta_goal|, obeys the triangle inequality on the circle. Adding
+  // b x |theta - theta_goal| keeps either anchor consistent if b x dtheta <= base - s |d| (resp.
+  // base - k w) for every action: the cost of an edge then covers both terms' decrease.
+  const std::vector<GridMove> moves = gridMoves(16);
+  const double inf = std::numeric_limits<double>::infinity();
+  double euclid = inf, grid = inf;
+  std::vector<double> walks(actions_.size(), 0.0);
+  for (std::size_t i = 0; i < actions_.size(); ++i) {
+    const LatticeAction& a = actions_[i];
+    if (a.dx == 0 && a.dy == 0) continue;
+    const double base = static_cast<double>(a.base_cost);
+    euclid = std::min(euclid, base / std::hypot(a.dx, a.dy));
+    walks[i] = walkLength(action_cells_[i].centre, CellOffset{a.dx, a.dy}, moves);
+    if (std::isfinite(walks[i]) && walks[i] > 0.0) grid = std::min(grid, base / walks[i]);
+  }
+  if (!std::isfinite(euclid)) euclid = 0.0;  // only turns in place: no distance information
+  if (!std::isfinite(grid)) grid = 0.0;
+  cheapest_per_cell_ = euclid;
+  euclid_per_cell_ = euclid * (1.0 - 1e-9);
+  grid_anchor_per_cell_ = grid * (1.0 - 1e-6);  // slack for the fixed-point rounding of the Q table
+  double bt_e = inf, bt_g = inf;
+  for (std::size_t i = 0; i < actions_.size(); ++i) {
+    const LatticeAction& a = actions_[i];
+    const MotionPrimitive& p = primitives_.primitives[a.primitive];
+    const double turn = angleDistance(primitives_.heading_angles[p.start_heading], primitives_.heading_angles[a.end_heading]);
+    if (turn <= 0.0) continue;
+    const double base = static_cast<double>(a.base_cost);
+    bt_e = std::min(bt_e, (base - euclid_per_cell_ * std::hypot(a.dx, a.dy)) / turn);
+    const double w = std::isfinite(walks[i]) ? walks[i] : 0.0;
+    bt_g = std::min(bt_g, (base - grid_anchor_per_cell_ * w) / turn);
+  }
+  euclid_turn_per_rad_ = std::isfinite(bt_e) ? std::max(0.0, bt_e) * (1.0 - 1e-9) : 0.0;
+  grid_turn_per_rad_ = std::isfinite(bt_g) ? std::max(0.0, bt_g) * (1.0 - 1e-6) : 0.0;
+}
+
+bool LatticeGraph::stateValid(int x, int y, int heading) const {
+  const int w = map_->width, h = map_->height;
+  if (x < 0 || y < 0 || x >= w || y >= h) return false;
+  if (map_->at(x, y) >= kInscribedCost) return false;
+  for (const CellOffset& c : rest_cells_[heading]) {
+    const int cx = x + c.dx, cy = y + c.dy;
+    if (cx < 0 || cy < 0 || cx >= w || cy >= h || map_->at(cx, cy) >= kLethalCost) return false;
+  }
+  return true;
+}
+
+bool LatticeGraph::poseToState(const Pose2D& pose, int* x, int* y, int* heading) const {
+  const GridMap& m = *map_;
+  const double c = std::cos(m.origin_yaw), s = std::sin(m.origin_yaw);
+  const double dx = pose.x - m.origin_x, dy = pose.y - m.origin_y;
+  const double gx = (c * dx + s * dy) / m.resolution, gy = (-s * dx + c * dy) / m.resolution;
+  if (!(gx >= 0.0 && gy >= 0.0 && gx < m.width && gy < m.height)) return false;
+  *x = static_cast<int>(gx);
+  *y = static_cast<int>(gy);
+  *heading = primitives_.headingIndex(pose.theta - m.origin_yaw);
+  return true;
+}
+
+Pose2D LatticeGraph::cellPoseToMap(int x, int y, const Pose2D& rel) const {
+  const GridMap& m = *map_;
+  const double gx = (x + 0.5) * m.resolution + rel.x, gy = (y + 0.5) * m.resolution + rel.y;
+  const double c = std::cos(m.origin_yaw), s = std::sin(m.origin_yaw);
+  return {m.origin_x + c * gx - s * gy, m.origin_y + s * gx + c * gy, std::remainder(rel.theta + m.origin_yaw, 2.0 * M_PI)};
+}
+
+Pose2D LatticeGraph::stateToPose(int x, int y, int heading) const {
+  return cellPoseToMap(x, y, Pose2D{0.0, 0.0, primitives_.heading_angles[heading]});
+}
+
+}  // namespace lattice
+}  // namespace amha

@@ -1,0 +1,183 @@
+// LatticePlanner: the facade over the lattice graph, the per-goal heuristic cache and the search.
+#include "amha_planner/lattice/lattice_planner.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <future>
+#include <list>
+#include <mutex>
+
+#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/lattice_graph.h"
+#include "amha_planner/lattice/lattice_problem.h"
+
+namespace amha {
+namespace lattice {
+
+struct LatticePlanner::Impl {
+  std::shared_ptr<const GridMap> map;
+  std::unique_ptr<LatticeGraph> graph;
+  std::unique_ptr<HeuristicGridBuilder> builder;
+
+  struct CacheEntry {
+    int x, y;
+    std::shared_future<std::shared_ptr<const GoalHeuristics>> grids;
+  };
+  std::mutex mutex;
+  std::list<CacheEntry> cache;  // most recently used first
+
+  /// The goal cell's grids: from the cache, or computed now (once, even if several threads ask
+  /// at the same time). `computed_seconds` receives the time spent here computing them.
+  std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, double* computed_seconds) {
+    *computed_seconds = 0.0;
+    std::promise<std::shared_ptr<const GoalHeuristics>> promise;
+    std::shared_future<std::shared_ptr<const GoalHeuristics>> future;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      for (auto it = cache.begin(); it != cache.end(); ++it) {
+        if (it->x == x && it->y == y) {
+          cache.splice(cache.begin(), cache, it);
+          future = it->grids;
+          break;
+        }
+      }
+      if (!future.valid()) {
+        cache.push_front(CacheEntry{x, y, promise.get_future().share()});
+        while (cache.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) cache.pop_back();
+      }
+    }
+    if (future.valid()) return future.get();
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      auto grids = builder->compute(x, y);
+      promise.set_value(grids);
+      *computed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      return grids;
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+      std::lock_guard<std::mutex> lock(mutex);
+      cache.remove_if([&](const CacheEntry& e) { return e.x == x && e.y == y; });
+      throw;
+    }
+  }
+
+  std::vector<Pose2D> posesOf(const LatticeProblem& problem, const std::vector<StateId>& path) const {
+    std::vector<Pose2D> poses;
+    if (path.empty()) return poses;
+    const LatticeState s0 = problem.state(path.front());
+    poses.push_back(graph->stateToPose(s0.x, s0.y, s0.heading));
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      const LatticeAction* a = problem.actionBetween(path[k - 1], path[k], nullptr);
+      if (a == nullptr) throw std::logic_error("lattice: solution uses a transition that is not an action");
+      const LatticeState from = problem.state(path[k - 1]);
+      const MotionPrimitive& prim = graph->primitives().primitives[a->primitive];
+      for (std::size_t i = 1; i < prim.poses.size(); ++i) poses.push_back(graph->cellPoseToMap(from.x, from.y, prim.poses[i]));
+    }
+    return poses;
+  }
+};
+
+LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config)
+    : impl_(new Impl) {
+  impl_->map = map;
+  impl_->graph.reset(new LatticeGraph(std::move(map), config));
+  impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
+}
+
+LatticePlanner::~LatticePlanner() = default;
+
+const GridMap& LatticePlanner::map() const { return *impl_->map; }
+const LatticeConfig& LatticePlanner::config() const { return impl_->graph->config(); }
+
+namespace {
+std::string poseText(const Pose2D& p) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "(%.3f, %.3f, %.3f)", p.x, p.y, p.theta);
+  return buf;
+}
+}  // namespace
+
+QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const {
+  const LatticeGraph& g = *impl_->graph;
+  const Pose2D* poses[2] = {&start, &goal};
+  const char* names[2] = {"start", "goal"};
+  const QueryError errors[2][3] = {
+      {QueryError::kStartNotFinite, QueryError::kStartOutOfMap, QueryError::kStartInCollision},
+      {QueryError::kGoalNotFinite, QueryError::kGoalOutOfMap, QueryError::kGoalInCollision}};
+  for (int k = 0; k < 2; ++k) {
+    const Pose2D& p = *poses[k];
+    std::string why;
+    QueryError e = QueryError::kNone;
+    int x = 0, y = 0, h = 0;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta)) {
+      e = errors[k][0];
+      why = std::string(names[k]) + " pose is not finite";
+    } else if (!g.poseToState(p, &x, &y, &h)) {
+      e = errors[k][1];
+      char buf[160];
+      std::snprintf(buf, sizeof buf, " is outside the map (%d x %d cells of %.3f m, origin (%.3f, %.3f, %.3f))",
+                    g.width(), g.height(), g.map().resolution, g.map().origin_x, g.map().origin_y, g.map().origin_yaw);
+      why = std::string(names[k]) + " " + poseText(p) + buf;
+    } else if (!g.stateValid(x, y, h)) {
+      e = errors[k][2];
+      why = std::string(names[k]) + " " + poseText(p) + " is in collision (cell " + std::to_string(x) + ", " +
+            std::to_string(y) + ", heading " + std::to_string(h) + ": cell cost " +
+            std::to_string(g.map().at(x, y)) + " or the footprint touches an obstacle or leaves the map)";
+    }
+    if (e != QueryError::kNone) {
+      if (message != nullptr) *message = why;
+      return e;
+    }
+  }
+  if (message != nullptr) message->clear();
+  return QueryError::kNone;
+}
+
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
+                                const SearchLimits& limits,
+                                const std::function<void(const LatticeSolution&)>& on_solution) {
+  PlanResult result;
+  result.error = checkQuery(start, goal, &result.message);
+  if (result.error != QueryError::kNone) return result;
+  std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
+  const LatticeGraph& g = *impl_->graph;
+  LatticeState s, t;
+  g.poseToState(start, &s.x, &s.y, &s.heading);
+  g.poseToState(goal, &t.x, &t.y, &t.heading);
+  auto grids = impl_->heuristicsFor(t.x, t.y, &result.heuristic_seconds);
+  LatticeProblem problem(g, grids, s, t, g.config().num_inadmissible);
+  SearchLimits remaining = limits;
+  remaining.time_limit_s = std::max(0.0, limits.time_limit_s - result.heuristic_seconds);
+  const double offset = result.heuristic_seconds;
+  SolutionCallback cb = [&](const Solution& sol) {
+    LatticeSolution ls;
+    ls.search = sol;
+    ls.poses = impl_->posesOf(problem, sol.path);
+    ls.elapsed_total_s = sol.elapsed_s + offset;
+    result.solutions.push_back(std::move(ls));
+    if (on_solution) on_solution(result.solutions.back());
+  };
+  result.search = planner->search(problem, remaining, cb);
+  return result;
+}
+
+std::vector<std::array<double, 2>> LatticePlanner::footprintAt(const Pose2D& pose) const {
+  return impl_->graph->footprint().at(pose);
+}
+
+const char* queryErrorName(QueryError e) {
+  switch (e) {
+    case QueryError::kNone: return "none";
+    case QueryError::kStartNotFinite: return "start_not_finite";
+    case QueryError::kGoalNotFinite: return "goal_not_finite";
+    case QueryError::kStartOutOfMap: return "start_out_of_map";
+    case QueryError::kGoalOutOfMap: return "goal_out_of_map";
+    case QueryError::kStartInCollision: return "start_in_collision";
+    case QueryError::kGoalInCollision: return "goal_in_collision";
+  }
+  return "unknown";
+}
+
+}  // namespace lattice
+}  // namespace amha

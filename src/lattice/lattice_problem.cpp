@@ -1,0 +1,113 @@
+// The lattice search problem: paged dense state index, successors, heuristics.
+#include "amha_planner/lattice/lattice_problem.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace amha {
+namespace lattice {
+
+LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
+                               LatticeState start, LatticeState goal, int num_inadmissible)
+    : graph_(graph),
+      heur_(std::move(heuristics)),
+      num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
+      width_(graph.width()),
+      headings_(graph.numHeadings()) {
+  if (graph.numHeadings() > 0xFFFF) throw LatticeError(LatticeError::Kind::kConfig, "too many headings");
+  for (int k = 0; k < kNumGridKinds; ++k) grids_[k] = heur_ && heur_->grids[k] ? heur_->grids[k].get() : nullptr;
+  for (int k = 1; k <= num_inadmissible_; ++k) {
+    if (grids_[k] == nullptr) num_inadmissible_ = k - 1;  // the planner did not build that grid
+  }
+  tiles_x_ = (graph.width() + kTile - 1) / kTile;
+  const int tiles_y = (graph.height() + kTile - 1) / kTile;
+  pages_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y, nullptr);
+  page_entries_ = static_cast<std::size_t>(kTile) * kTile * headings_;
+  goal_x_ = goal.x;
+  goal_y_ = goal.y;
+  const std::vector<double>& angles = graph.primitives().heading_angles;
+  for (int h = 0; h < headings_; ++h) {
+    const double d = angleDistance(angles[h], angles[goal.heading]);
+    turn_euclid_.push_back(graph.euclidTurnUnitsPerRadian() * d);
+    turn_grid_.push_back(graph.gridTurnUnitsPerRadian() * d * kGridFraction);
+  }
+  start_ = id(start.x, start.y, start.heading);
+  goal_ = id(goal.x, goal.y, goal.heading);
+}
+
+LatticeProblem::~LatticeProblem() = default;
+
+StateId LatticeProblem::id(int x, int y, int heading) {
+  const std::size_t tile = static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile;
+  std::uint32_t* page = pages_[tile];
+  if (page == nullptr) {
+    if (slabs_.empty() || slab_used_ == kPagesPerSlab) {
+      slabs_.emplace_back(new std::uint32_t[kPagesPerSlab * page_entries_]);
+      slab_used_ = 0;
+    }
+    page = slabs_.back().get() + slab_used_++ * page_entries_;
+    std::fill(page, page + page_entries_, kNoState);
+    pages_[tile] = page;
+  }
+  std::uint32_t& slot = page[static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading];
+  if (slot == kNoState) {
+    slot = static_cast<StateId>(states_.size());
+    const std::uint64_t cell = static_cast<std::uint64_t>(y) * width_ + x;
+    states_.push_back(cell << 16 | static_cast<std::uint64_t>(heading));
+  }
+  return slot;
+}
+
+void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
+  out.clear();
+  const LatticeState st = state(s);
+  for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading); ++a) {
+    const Cost c = graph_.edgeCost(st.x, st.y, *a);
+    if (c == kInvalidEdge) continue;
+    out.push_back(Edge{id(st.x + a->dx, st.y + a->dy, a->end_heading), c});
+  }
+}
+
+const LatticeAction* LatticeProblem::actionBetween(StateId from, StateId to, Cost* cost) const {
+  const LatticeState a = state(from), b = state(to);
+  const LatticeAction* best = nullptr;
+  Cost best_cost = kInfiniteCost;
+  for (const LatticeAction* act = graph_.actionsBegin(a.heading); act != graph_.actionsEnd(a.heading); ++act) {
+    if (a.x + act->dx != b.x || a.y + act->dy != b.y || act->end_heading != b.heading) continue;
+    const Cost c = graph_.edgeCost(a.x, a.y, *act);
+    if (c != kInvalidEdge && c < best_cost) {
+      best_cost = c;
+      best = act;
+    }
+  }
+  if (cost != nullptr) *cost = best_cost;
+  return best;
+}
+
+HeuristicValue LatticeProblem::anchor(int x, int y, int heading) const {
+  const double dx = x - goal_x_, dy = y - goal_y_;
+  const double euclid = graph_.euclidUnitsPerCell() * std::sqrt(dx * dx + dy * dy);
+  if (grids_[0] == nullptr) return static_cast<HeuristicValue>(std::min(std::floor(euclid), 4e9));
+  const std::uint32_t g = grids_[0]->at(x, y);
+  if (g == kUnreachable) return kInfiniteHeuristic;  // provably cannot reach the goal
+  const double a = std::floor(euclid + turn_euclid_[heading]);
+  const double b = std::floor((g + turn_grid_[heading]) / kGridFraction);
+  return static_cast<HeuristicValue>(std::min(std::max(a, b), 4e9));
+}
+
+void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {
+  const LatticeState st = state(s);
+  h[0] = anchor(st.x, st.y, st.heading);
+  for (std::size_t i = 1; i < count; ++i) {
+    const std::uint32_t g = grids_[i]->at(st.x, st.y);
+    h[i] = g == kUnreachable ? kInfiniteHeuristic : g / kGridFraction;
+  }
+}
+
+std::size_t LatticeProblem::memoryBytes() const {
+  return states_.capacity() * sizeof(std::uint64_t) + pages_.capacity() * sizeof(std::uint32_t*) +
+         slabs_.size() * kPagesPerSlab * page_entries_ * sizeof(std::uint32_t);
+}
+
+}  // namespace lattice
+}  // namespace amha
