@@ -105,7 +105,7 @@ PlanSolution planSolutionMsg(const lat::LatticeSolution& solution, std::uint32_t
   m.w2 = solution.search.w2;
   m.bound = solution.search.nominal_bound;
   m.certified_bound = solution.search.certified_bound;
-  m.elapsed = solution.search.elapsed_s;
+  m.elapsed = solution.elapsed_total_s;  // heuristic grids for a new goal included
   m.expansions = solution.search.expansions;
   m.iteration = solution.search.iteration;
   return m;

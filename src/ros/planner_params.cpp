@@ -149,6 +149,10 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.turn_in_place = getBool(pnh, "turn_in_place", l.turn_in_place);
   l.cost_penalty = getDouble(pnh, "cost_penalty", l.cost_penalty, 0.0, 1e6);
   l.num_inadmissible = getInt(pnh, "num_inadmissible", l.num_inadmissible, 0, 3);
+  l.nominal_speed = getDouble(pnh, "nominal_speed", l.nominal_speed, 1e-3, 100.0);
+  l.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.time_to_turn_45, 0.0, 1000.0);
+  l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
+  l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
   // Map.
   p.occupancy.lethal_threshold =
       getInt(pnh, "lethal_threshold", p.occupancy.lethal_threshold, 1, 100);

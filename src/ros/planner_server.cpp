@@ -79,18 +79,20 @@ std::string fmt(double v, int precision = 3) {
   return s.str();
 }
 
+// Moves rather than copies: with every solution's path a result can be megabytes, and a
+// cancelled goal's result should leave at once.
 template <class Result>
-void copyResponse(const Plan::Response& in, Result* out) {
+void moveResponse(Plan::Response&& in, Result* out) {
   out->status = in.status;
-  out->message = in.message;
+  out->message = std::move(in.message);
   out->request_id = in.request_id;
-  out->path = in.path;
+  out->path = std::move(in.path);
   out->cost = in.cost;
   out->bound = in.bound;
   out->certified_bound = in.certified_bound;
   out->planning_time = in.planning_time;
   out->expansions = in.expansions;
-  out->solutions = in.solutions;
+  out->solutions = std::move(in.solutions);
 }
 
 }  // namespace
@@ -318,7 +320,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.solutions.push_back(std::move(m));
     };
     const lat::PlanResult result = planner->plan(s, g, config, limits, on_solution);
-    res.planning_time = result.search.elapsed_s;
+    res.planning_time = result.search.elapsed_s + result.heuristic_seconds;
     res.expansions = result.search.expansions;
 
     if (result.error != lat::QueryError::kNone) {
@@ -474,23 +476,25 @@ void PlannerServer::onGoal(GoalHandle goal) {
   std::lock_guard<std::mutex> lock(goals_mutex_);
   const bool queued = queue_->submit([this, goal, r, id, flag, goal_id]() mutable {
     { std::lock_guard<std::mutex> accepted(goals_mutex_); }  // setAccepted() has run
-    const Plan::Response res = execute(r, id, *flag, [&goal](const PlanSolution& s) {
+    Plan::Response res = execute(r, id, *flag, [&goal](const PlanSolution& s) {
       PlanAnytimeFeedback feedback;
       feedback.solution = s;
       goal.publishFeedback(feedback);
     });
     logOutcome("plan_anytime", res);
+    const std::uint32_t status = res.status;
+    const std::string message = res.message;
     PlanAnytimeResult result;
-    copyResponse(res, &result);
+    moveResponse(std::move(res), &result);
     const auto state = goal.getGoalStatus().status;
     const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
                                   state == actionlib_msgs::GoalStatus::RECALLING;
-    if (res.status == Status::SUCCESS) {
-      goal.setSucceeded(result, res.message);
-    } else if (res.status == Status::CANCELLED && client_cancelled) {
-      goal.setCanceled(result, res.message);
+    if (status == Status::SUCCESS) {
+      goal.setSucceeded(result, message);
+    } else if (status == Status::CANCELLED && client_cancelled) {
+      goal.setCanceled(result, message);
     } else {
-      goal.setAborted(result, res.message);
+      goal.setAborted(result, message);
     }
     {
       std::lock_guard<std::mutex> done(goals_mutex_);
