@@ -57,7 +57,7 @@ void drawPicture(const nav_msgs::OccupancyGrid& map,
                  const geometry_msgs::PoseStamped& start, const geometry_msgs::PoseStamped& goal,
                  const std::string& caption, const std::string& path) {
   const int w = static_cast<int>(map.info.width), h = static_cast<int>(map.info.height);
-  const int scale = std::max(1, std::min(4, 1200 / std::max(w, h)));
+  const int scale = std::max(1, std::min(4, 1400 / std::max(w, h)));
   cv::Mat cells(h, w, CV_8UC3);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -70,27 +70,42 @@ void drawPicture(const nav_msgs::OccupancyGrid& map,
   cv::Mat image;
   cv::resize(cells, image, cv::Size(w * scale, h * scale), 0, 0, cv::INTER_NEAREST);
   const Projector to_px{&map, scale};
-  // Early solutions warm (orange), later ones cool (blue); the final path thickest.
-  for (std::size_t i = 0; i < solutions.size(); ++i) {
-    const double t = solutions.size() > 1 ? double(i) / double(solutions.size() - 1) : 1.0;
+  // A solution that only tightens the bound repeats the previous path: draw each path once,
+  // early ones warm (orange), later ones cool (blue), the final one thickest.
+  std::vector<const amha_planner::PlanSolution*> distinct;
+  for (const auto& s : solutions) {
+    if (distinct.empty() || s.cost < distinct.back()->cost) distinct.push_back(&s);
+  }
+  const cv::Point legend(12, image.rows - 14 - 22 * static_cast<int>(distinct.size()));
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    const double t = distinct.size() > 1 ? double(i) / double(distinct.size() - 1) : 1.0;
     const cv::Scalar color(255 * t, 140 * (1 - t) + 60 * t, 255 * (1 - t));  // BGR
-    const int thickness = i + 1 == solutions.size() ? 3 : 1;
+    const bool last = i + 1 == distinct.size();
     std::vector<cv::Point> pts;
-    for (const auto& p : solutions[i].path.poses) {
+    for (const auto& p : distinct[i]->path.poses) {
       pts.push_back(to_px(p.pose.position.x, p.pose.position.y));
     }
-    cv::polylines(image, pts, false, color, thickness, cv::LINE_AA);
+    cv::polylines(image, pts, false, color, last ? 4 : 2, cv::LINE_AA);
+    char text[160];
+    std::snprintf(text, sizeof text, "%.3f s: cost %.2f m, bound %.2f, certified %.2f",
+                  distinct[i]->elapsed, distinct[i]->cost, distinct[i]->bound,
+                  distinct[i]->certified_bound);
+    const cv::Point at = legend + cv::Point(0, 22 * static_cast<int>(i + 1));
+    cv::line(image, at + cv::Point(0, -6), at + cv::Point(30, -6), color, 4);
+    cv::putText(image, text, at + cv::Point(40, 0), cv::FONT_HERSHEY_SIMPLEX, 0.55, {0, 0, 0}, 1,
+                cv::LINE_AA);
   }
-  cv::circle(image, to_px(start.pose.position.x, start.pose.position.y), 6, {0, 170, 0}, -1);
-  cv::circle(image, to_px(goal.pose.position.x, goal.pose.position.y), 6, {0, 0, 220}, -1);
-  cv::putText(image, caption, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, {0, 0, 0}, 2, cv::LINE_AA);
-  cv::putText(image, "start (green), goal (red); early paths orange .. final path blue",
-              {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.5, {60, 60, 60}, 1, cv::LINE_AA);
+  cv::circle(image, to_px(start.pose.position.x, start.pose.position.y), 4 * scale, {0, 170, 0},
+             -1);
+  cv::circle(image, to_px(goal.pose.position.x, goal.pose.position.y), 4 * scale, {0, 0, 220}, -1);
+  cv::putText(image, caption, {12, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.7, {0, 0, 0}, 2, cv::LINE_AA);
+  cv::putText(image, "start green, goal red; each improved path, early orange .. final blue",
+              {12, 56}, cv::FONT_HERSHEY_SIMPLEX, 0.55, {60, 60, 60}, 1, cv::LINE_AA);
   if (!cv::imwrite(path, image)) {
     ROS_ERROR("demo_client: could not write %s", path.c_str());
   } else {
-    std::printf("demo: picture of the map with %zu improved path(s) saved to %s\n",
-                solutions.size(), path.c_str());
+    std::printf("demo: picture of the map with %zu distinct improved path(s) saved to %s\n",
+                distinct.size(), path.c_str());
   }
 }
 
@@ -182,11 +197,14 @@ int main(int argc, char** argv) {
               improvements, result->cost, result->bound, result->certified_bound,
               result->planning_time, static_cast<unsigned long long>(result->expansions));
   if (!output_image.empty()) {
+    std::string name = algorithm;
+    if (name.empty() && !ros::param::get("/amha_planner/algorithm", name)) name = "amha";
     char caption[200];
     std::snprintf(caption, sizeof caption,
-                  "%zu improvements: final cost %.2f m, bound %.2f (certified %.2f) in %.2f s",
-                  result->solutions.size(), result->cost, result->bound, result->certified_bound,
-                  result->planning_time);
+                  "%s: %zu solutions, final cost %.2f m, bound %.2f (certified %.2f), "
+                  "%.2f s",
+                  name.c_str(), result->solutions.size(), result->cost, result->bound,
+                  result->certified_bound, result->planning_time);
     std::lock_guard<std::mutex> lock(map_mutex);
     drawPicture(*map, result->solutions, goal.start, goal.goal, caption, output_image);
   }
