@@ -153,7 +153,7 @@ visualization_msgs::Marker poseArrow(const std::string& ns, const lat::Pose2D& p
   m.pose.position.y = p.y;
   m.pose.position.z = 0.05;
   m.pose.orientation = quaternionFromYaw(p.theta);
-  m.scale.x = 0.6; m.scale.y = 0.12; m.scale.z = 0.12;
+  m.scale.x = 1.0; m.scale.y = 0.2; m.scale.z = 0.2;
   m.color = c;
   return m;
 }
@@ -172,8 +172,8 @@ visualization_msgs::MarkerArray footprintMarkers(const lat::LatticePlanner& plan
   out.markers.push_back(clear);
 
   auto along = baseMarker("footprints", 0, visualization_msgs::Marker::LINE_LIST, frame, stamp);
-  along.scale.x = 0.02;
-  along.color = color(0.1f, 0.4f, 1.0f, 0.8f);
+  along.scale.x = 0.04;
+  along.color = color(1.0f, 0.55f, 0.0f, 0.9f);  // orange around the (blue) path
   double travelled = 0.0, next = 0.0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     if (i > 0) travelled += std::hypot(poses[i].x - poses[i - 1].x, poses[i].y - poses[i - 1].y);
@@ -190,7 +190,7 @@ visualization_msgs::MarkerArray footprintMarkers(const lat::LatticePlanner& plan
   out.markers.push_back(poseArrow("goal", goal, red, frame, stamp));
   auto start_fp = baseMarker("start_footprint", 0, visualization_msgs::Marker::LINE_LIST, frame,
                              stamp);
-  start_fp.scale.x = 0.04;
+  start_fp.scale.x = 0.06;
   start_fp.color = green;
   addOutline(planner.footprintAt(start), &start_fp);
   out.markers.push_back(start_fp);
