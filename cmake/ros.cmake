@@ -62,7 +62,7 @@ install(FILES ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
 
 # Unit tests of the ROS-free parts of the server.
 amha_add_gtest(amha_ros_unit_tests
-  SOURCES test/ros/plan_queue_test.cpp
+  SOURCES test/ros/plan_queue_test.cpp test/ros/conversions_test.cpp
   LIBS amha_ros)
 
 # rostest nodes (test/ros/*.test, run by scripts/test). Built with everything, into the devel

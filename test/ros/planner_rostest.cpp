@@ -81,9 +81,10 @@ Plan::Response plan(const geometry_msgs::PoseStamped& start,
 }
 
 // Queries the planner without searching to learn which map it uses: the start lies in the
-// extra block of testMapWithExtraBlock(), the goal in the block of both maps.
+// maze's door, closed in testMapWithExtraBlock() (INVALID_START) and open in testMap() (then
+// the goal, in the block of both maps, gives INVALID_GOAL).
 std::uint32_t probeMap() {
-  return plan(pose(8.5, -0.5, 0, "map"), pose(2.5, 4.0, 0, "map"), 1.0).status;
+  return plan(pose(11.0, 8.0, 0, "map"), pose(2.5, 4.0, 0, "map"), 1.0).status;
 }
 bool waitForProbe(std::uint32_t expected, double seconds) {
   const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
@@ -384,8 +385,8 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
 }
 
 TEST(PlannerNodelet, BadMapsAreRefusedAndTheCurrentMapKept) {
-  // Each bad map is the "extra block" map broken in one way: were it accepted, the probe's
-  // start would be blocked (INVALID_START) instead of free (INVALID_GOAL).
+  // Each bad map is the closed-door map broken in one way: were it accepted, the probe's start
+  // would be blocked (INVALID_START) instead of free (INVALID_GOAL).
   ASSERT_EQ(probeMap(), Status::INVALID_GOAL);
   std::vector<std::pair<std::string, nav_msgs::OccupancyGrid>> bad;
   auto m = testMapWithExtraBlock();
@@ -433,14 +434,21 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
   for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
   ASSERT_GT(feedback.load(), 0);
   EXPECT_FALSE(client.getState().isDone()) << "the plan should still be running";
+  // The new map closes the maze's door: the running plan must not notice.
   g_map_pub.publish(testMapWithExtraBlock());
   ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
   const auto result = client.getResult();
   ASSERT_EQ(result->status, PlanAnytimeResult::SUCCESS) << result->message;
   expectValidPath(result->path, kMazeStart, kMazeGoal, testMap());  // the map it started on
   expectMonotone(result->solutions);
-  // The new map is in use for the next request, then the original one again.
+  for (const auto& s : result->solutions) {
+    expectValidPath(s.path, kMazeStart, kMazeGoal, testMap());
+  }
+  // The next requests use the new map: the maze cannot be reached any more.
   EXPECT_TRUE(waitForProbe(Status::INVALID_START, 20.0)) << "the new map was not adopted";
+  const auto closed = plan(kMazeStart, kMazeGoal, 5.0);
+  EXPECT_EQ(closed.status, Status::NO_PATH_FOUND) << closed.message;
+  // Then the original one again.
   g_map_pub.publish(testMap());
   EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the original map was not restored";
 }

@@ -43,6 +43,7 @@ void MapBuilder::box(double x0, double y0, double x1, double y1, double t) {
 }
 
 nav_msgs::OccupancyGrid testMap() {
+  static const nav_msgs::OccupancyGrid map = [] {
   MapBuilder m(-1.0, -2.0, 0.05, 600, 400, "map");
   m.box(-1.0, -2.0, 29.0, 18.0, 0.2);       // outer wall
   // Rooms: a wall at x = 5 with doors at y in [1, 2.2] and [12, 13.5].
@@ -64,13 +65,15 @@ nav_msgs::OccupancyGrid testMap() {
     }
   }
   return m.grid;
+  }();
+  return map;
 }
 
 nav_msgs::OccupancyGrid testMapWithExtraBlock() {
   nav_msgs::OccupancyGrid g = testMap();
   MapBuilder m(-1.0, -2.0, 0.05, 600, 400, "map");
   m.grid = g;
-  m.fill(8.0, -1.0, 9.0, 0.0, 100);
+  m.fill(10.5, 6.9, 11.5, 9.1, 100);  // closes the maze's only door
   return m.grid;
 }
 
@@ -115,14 +118,14 @@ std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::O
       for (int cx = cx0; cx <= cx1; ++cx) {
         const double x = ox + (cx + 0.5) * r, y = oy + (cy + 0.5) * r;
         if (!insidePolygon(poly, x, y)) continue;
+        const bool outside = cx < 0 || cy < 0 || cx >= w || cy >= h;
+        const int v = outside ? -1 : map.data[static_cast<std::size_t>(cy) * w + cx];
+        if (!outside && v >= 0 && v < lethal_threshold) continue;
         std::ostringstream why;
         why << "pose " << k << " (" << p.position.x << ", " << p.position.y << ", " << yaw
             << "): footprint covers cell (" << cx << ", " << cy << ")";
-        if (cx < 0 || cy < 0 || cx >= w || cy >= h) return why.str() + " outside the map";
-        const int v = map.data[static_cast<std::size_t>(cy) * w + cx];
-        if (v < 0 || v >= lethal_threshold) {
-          return why.str() + " with occupancy " + std::to_string(v);
-        }
+        if (outside) return why.str() + " outside the map";
+        return why.str() + " with occupancy " + std::to_string(v);
       }
     }
   }

@@ -28,7 +28,8 @@ struct MapBuilder {
 /// (a wall at x = 5 with two doors, a block at [2, 3] x [3, 5], a closed pocket around
 /// (8, 15)), a serpentine maze on the right (x in [11, 29]) for long searches.
 nav_msgs::OccupancyGrid testMap();
-/// testMap() plus an obstacle block at [8, 9] x [-1, 0] (a "new map" that can be told apart).
+/// testMap() with the maze's door closed by a block at [10.5, 11.5] x [6.9, 9.1]: a "new map"
+/// that can be told apart (see probeMap in planner_rostest.cpp), on which the maze is unreachable.
 nav_msgs::OccupancyGrid testMapWithExtraBlock();
 
 /// The footprint the tests configure (base frame, metres): 0.5 m x 0.36 m.
