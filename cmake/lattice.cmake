@@ -15,6 +15,7 @@ add_library(amha_lattice
   src/lattice/footprint.cpp
   src/lattice/lattice_graph.cpp
   src/lattice/heuristic_grids.cpp
+  src/lattice/coarse_lattice.cpp
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
 )

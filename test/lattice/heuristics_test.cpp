@@ -111,7 +111,7 @@ LatticeFixture makeFixture(std::shared_ptr<GridMap> map, const LatticeConfig& c)
 
 // h0(p) <= cost(p, q) + h0(q) for every valid edge out of many random valid states.
 void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, int samples, unsigned seed) {
-  auto heur = f.builder->compute(goal.x, goal.y);
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
   LatticeProblem p(*f.graph, heur, goal, goal, 3);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> rx(0, f.map->width - 1), ry(0, f.map->height - 1), rh(0, f.graph->numHeadings() - 1);
@@ -210,7 +210,7 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
       }
     }
   }
-  auto heur = f.builder->compute(goal.x, goal.y);
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
   LatticeProblem p(*f.graph, heur, goal, goal, 3);
   int reachable = 0, tight = 0;
   double ratio_sum = 0.0;
@@ -236,7 +236,7 @@ TEST(HeuristicGridTest, GoalsCachedAndGridsShared) {
   LatticeConfig c;
   c.robot_radius = 0.0;
   LatticeFixture f = makeFixture(map, c);
-  auto h = f.builder->compute(10, 10);
+  auto h = f.builder->compute(10, 10, 0);
   ASSERT_TRUE(h->grids[1] && h->grids[2] && h->grids[3]);
   EXPECT_EQ(h->grids[1], h->grids[2]);  // identical levels: computed once
   EXPECT_EQ(h->grids[2], h->grids[3]);

@@ -144,7 +144,7 @@ constexpr Cost kUnknownOptimum = -1;  // a solution is expected, its optimal cos
 // optimum is known, that cost <= certified_bound x optimum.
 void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, LatticeState s, LatticeState t,
                     const PlannerConfig& config, Cost optimal, double time_limit) {
-  LatticeProblem p(g, b.compute(t.x, t.y, 1), s, t, 3);
+  LatticeProblem p(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
   auto planner = makePlanner(config);
   SearchLimits limits;
   limits.time_limit_s = time_limit;
@@ -184,11 +184,11 @@ TEST(LatticeSearchTest, AStarEqualsExhaustiveDijkstraAndEveryPathValidates) {
     for (int q = 0; q < 3; ++q) {
       LatticeState s, t;
       ASSERT_TRUE(randomQuery(g, rng, &s, &t));
-      LatticeProblem ref(g, b.compute(t.x, t.y, 1), s, t, 3);
+      LatticeProblem ref(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
       const Cost optimal = exhaustiveDijkstra(ref);
       solved += optimal != kInfiniteCost;
       {
-        LatticeProblem p(g, b.compute(t.x, t.y, 1), s, t, 3);
+        LatticeProblem p(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
         const SearchResult r = makePlanner(defaultConfig(Algorithm::kAStar))->search(p, SearchLimits());
         if (optimal == kInfiniteCost) {
           EXPECT_EQ(r.status, SearchStatus::kNoSolution);
@@ -215,7 +215,7 @@ TEST(LatticeSearchTest, AmhaWithinCertifiedBoundOnLargerMaps) {
     std::mt19937 rng(seed);
     LatticeState s, t;
     ASSERT_TRUE(randomQuery(g, rng, &s, &t));
-    LatticeProblem ref(g, b.compute(t.x, t.y, 1), s, t, 3);
+    LatticeProblem ref(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
     const Cost optimal = exhaustiveDijkstra(ref);
     runAndValidate(g, b, s, t, defaultConfig(Algorithm::kAmhaStar), optimal, 30.0);
   }
