@@ -15,6 +15,7 @@ add_library(amha_lattice
   src/lattice/footprint.cpp
   src/lattice/lattice_graph.cpp
   src/lattice/heuristic_grids.cpp
+  src/lattice/coarse_lattice.cpp
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
 )
@@ -29,3 +30,15 @@ target_sources(amha PRIVATE
   src/cli/plan_command.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
+
+amha_add_gtest(amha_lattice_tests
+  SOURCES
+    test/lattice/test_support.cpp
+    test/lattice/path_validator.cpp
+    test/lattice/map_loaders_test.cpp
+    test/lattice/mprim_test.cpp
+    test/lattice/footprint_test.cpp
+    test/lattice/heuristics_test.cpp
+    test/lattice/planner_test.cpp
+  LIBS amha_lattice ${OpenCV_LIBS})
+target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})

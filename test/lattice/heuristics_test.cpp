@@ -1,0 +1,248 @@
+// Heuristic grids against an independent Dijkstra, and the anchor's consistency and
+// admissibility on the real lattice (random edges; exhaustive cost-to-go on small maps).
+#include <cmath>
+#include <queue>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/lattice_graph.h"
+#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/map_loaders.h"
+#include "test_support.h"
+
+namespace amha {
+namespace lattice {
+namespace {
+
+TEST(GridMovesTest, RequiredCells) {
+  const auto m8 = gridMoves(8);
+  const auto m16 = gridMoves(16);
+  ASSERT_EQ(m8.size(), 8u);
+  ASSERT_EQ(m16.size(), 16u);
+  for (const GridMove& m : m16) {
+    const int adx = std::abs(m.dx), ady = std::abs(m.dy);
+    const std::size_t expected = adx + ady == 1 ? 2 : 4;  // straight: the two ends; diagonal/knight: 4 cells
+    EXPECT_EQ(m.required.size(), expected) << m.dx << "," << m.dy;
+  }
+}
+
+// Plain Dijkstra with a binary heap over the same rules (8-connected, corner cells required,
+// cost = floor(units x length x (1 + P c / 252) x fraction)), written independently.
+std::vector<std::uint64_t> referenceGrid(const GridMap& m, int gx, int gy, double units, double pen, int max_class) {
+  const int w = m.width, h = m.height;
+  auto passable = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class; };
+  std::vector<std::uint64_t> d(static_cast<std::size_t>(w) * h, UINT64_MAX);
+  using Item = std::pair<std::uint64_t, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  if (!passable(gx, gy)) return d;
+  d[gy * w + gx] = 0;
+  q.push({0, gy * w + gx});
+  while (!q.empty()) {
+    const auto [dist, i] = q.top();
+    q.pop();
+    if (dist != d[i]) continue;
+    const int x = i % w, y = i / w;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const int nx = x + dx, ny = y + dy;
+        if (!passable(nx, ny)) continue;
+        int c = std::max<int>(m.at(x, y), m.at(nx, ny));
+        if (dx != 0 && dy != 0) {
+          if (!passable(x + dx, y) || !passable(x, y + dy)) continue;
+          c = std::max<int>({c, m.at(x + dx, y), m.at(x, y + dy)});
+        }
+        const double step = units * std::hypot(dx, dy) * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+        const std::uint64_t nd = dist + static_cast<std::uint64_t>(std::floor(step));
+        if (nd < d[ny * w + nx]) {
+          d[ny * w + nx] = nd;
+          q.push({nd, ny * w + nx});
+        }
+      }
+    }
+  }
+  return d;
+}
+
+TEST(HeuristicGridTest, PointRobotGridEqualsReferenceDijkstra) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    auto map = test::randomMap(70, 50, 0.05, seed, 25, seed == 3 ? 0 : 200);
+    const int gx = 35, gy = 25;
+    map->cost[gy * map->width + gx] = 0;
+    LatticeConfig c;
+    c.turning_radius = 0.2;
+    c.robot_radius = 0.0;
+    c.cost_penalty = seed == 2 ? 252.0 : 3.0;
+    c.grid_anchor = false;
+    c.num_inadmissible = 1;
+    LatticeGraph g(map, c);
+    HeuristicGridBuilder b(g);
+    const DistanceGrid grid = b.computeOne(GridKind::kPointRobot, gx, gy);
+    const auto ref = referenceGrid(*map, gx, gy, g.cheapestUnitsPerCell(), c.cost_penalty, kLethalCost - 1);
+    for (int y = 0; y < map->height; ++y) {
+      for (int x = 0; x < map->width; ++x) {
+        const std::uint64_t r = ref[y * map->width + x];
+        const std::uint32_t v = grid.at(x, y);
+        if (r == UINT64_MAX) {
+          ASSERT_EQ(v, kUnreachable) << x << "," << y;
+        } else {
+          ASSERT_EQ(v, r) << x << "," << y;
+        }
+      }
+    }
+  }
+}
+
+struct LatticeFixture {
+  std::shared_ptr<GridMap> map;
+  std::unique_ptr<LatticeGraph> graph;
+  std::unique_ptr<HeuristicGridBuilder> builder;
+};
+
+LatticeFixture makeFixture(std::shared_ptr<GridMap> map, const LatticeConfig& c) {
+  LatticeFixture f;
+  f.map = std::move(map);
+  f.graph.reset(new LatticeGraph(f.map, c));
+  f.builder.reset(new HeuristicGridBuilder(*f.graph));
+  return f;
+}
+
+// h0(p) <= cost(p, q) + h0(q) for every valid edge out of many random valid states.
+void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, int samples, unsigned seed) {
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
+  LatticeProblem p(*f.graph, heur, goal, goal, 3);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> rx(0, f.map->width - 1), ry(0, f.map->height - 1), rh(0, f.graph->numHeadings() - 1);
+  int edges = 0;
+  EXPECT_EQ(p.anchor(goal.x, goal.y, goal.heading), 0u);
+  for (int k = 0; k < samples; ++k) {
+    const int x = rx(rng), y = ry(rng), h = rh(rng);
+    if (!f.graph->stateValid(x, y, h)) continue;
+    const HeuristicValue hp = p.anchor(x, y, h);
+    for (const LatticeAction* a = f.graph->actionsBegin(h); a != f.graph->actionsEnd(h); ++a) {
+      const Cost c = f.graph->edgeCost(x, y, *a);
+      if (c == kInvalidEdge) continue;
+      const HeuristicValue hq = p.anchor(x + a->dx, y + a->dy, a->end_heading);
+      ++edges;
+      if (hq == kInfiniteHeuristic) {
+        ASSERT_EQ(hp, kInfiniteHeuristic) << "a state that reaches a dead end must be a dead end";
+        continue;
+      }
+      ASSERT_NE(hp, kInfiniteHeuristic) << "infinite h at (" << x << "," << y << "," << h << ") with a finite successor";
+      ASSERT_LE(static_cast<Cost>(hp), c + static_cast<Cost>(hq))
+          << "(" << x << "," << y << "," << h << ") -> (" << x + a->dx << "," << y + a->dy << "," << a->end_heading << ")";
+    }
+  }
+  EXPECT_GT(edges, samples / 4);
+}
+
+TEST(AnchorTest, ConsistentOnRandomEdgesOfGeneratedLattices) {
+  for (unsigned seed : {11u, 12u}) {
+    for (bool grid : {true, false}) {
+      auto map = test::randomMap(120, 90, 0.05, seed, 30, 180);
+      LatticeConfig c;
+      c.turning_radius = 0.3;
+      c.allow_reverse = seed == 12;
+      c.footprint = test::rectangle(0.12, 0.08);
+      c.cost_penalty = seed == 11 ? 252.0 : 2.0;
+      c.time_to_turn_45 = seed == 11 ? 3.0 : 0.6;
+      c.grid_anchor = grid;
+      map->cost[45 * 120 + 60] = 0;
+      LatticeFixture f = makeFixture(map, c);
+      LatticeState goal{60, 45, 3};
+      checkConsistencyOnRandomEdges(f, goal, 4000, seed);
+    }
+  }
+}
+
+TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
+  AMHA_REQUIRE_SHARED_DATA(data);
+  SbplEnvironment env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
+  LatticeConfig c;
+  c.mprim_file = data + "/sbpl/pr2.mprim";
+  c.footprint = test::rectangle(0.01, 0.01);
+  c.cost_penalty = 252.0;
+  c.nominal_speed = env.nominal_speed;
+  c.time_to_turn_45 = env.time_to_turn_45;
+  LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);
+  checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
+}
+
+// Exhaustive cost-to-go on a small lattice (reverse Dijkstra over all edges): h0 never exceeds it.
+TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
+  auto map = test::randomMap(40, 30, 0.05, 21, 10, 120);
+  LatticeConfig c;
+  c.turning_radius = 0.25;
+  c.allow_reverse = true;
+  c.footprint = test::rectangle(0.07, 0.05);
+  c.cost_penalty = 5.0;
+  c.time_to_turn_45 = 1.5;
+  map->cost[15 * 40 + 20] = 0;
+  LatticeFixture f = makeFixture(map, c);
+  const LatticeState goal{20, 15, 5};
+  ASSERT_TRUE(f.graph->stateValid(goal.x, goal.y, goal.heading));
+  const int n = f.graph->numHeadings();
+  auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y) * map->width + x) * n + h; };
+  const std::size_t total = static_cast<std::size_t>(map->width) * map->height * n;
+  std::vector<std::vector<std::pair<std::size_t, Cost>>> reverse(total);
+  for (int y = 0; y < map->height; ++y)
+    for (int x = 0; x < map->width; ++x)
+      for (int h = 0; h < n; ++h)
+        for (const LatticeAction* a = f.graph->actionsBegin(h); a != f.graph->actionsEnd(h); ++a) {
+          const Cost cost = f.graph->edgeCost(x, y, *a);
+          if (cost != kInvalidEdge) reverse[index(x + a->dx, y + a->dy, a->end_heading)].push_back({index(x, y, h), cost});
+        }
+  std::vector<Cost> togo(total, kInfiniteCost);
+  using Item = std::pair<Cost, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  togo[index(goal.x, goal.y, goal.heading)] = 0;
+  q.push({0, index(goal.x, goal.y, goal.heading)});
+  while (!q.empty()) {
+    const auto [d, i] = q.top();
+    q.pop();
+    if (d != togo[i]) continue;
+    for (const auto& [j, cost] : reverse[i]) {
+      if (d + cost < togo[j]) {
+        togo[j] = d + cost;
+        q.push({togo[j], j});
+      }
+    }
+  }
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
+  LatticeProblem p(*f.graph, heur, goal, goal, 3);
+  int reachable = 0, tight = 0;
+  double ratio_sum = 0.0;
+  for (int y = 0; y < map->height; ++y)
+    for (int x = 0; x < map->width; ++x)
+      for (int h = 0; h < n; ++h) {
+        const HeuristicValue hv = p.anchor(x, y, h);
+        const Cost t = togo[index(x, y, h)];
+        if (t == kInfiniteCost) continue;
+        ++reachable;
+        ASSERT_NE(hv, kInfiniteHeuristic) << x << "," << y << "," << h;
+        ASSERT_LE(static_cast<Cost>(hv), t) << x << "," << y << "," << h;
+        tight += hv * 10 >= t * 7;
+        ratio_sum += static_cast<double>(hv) / std::max<Cost>(1, t);
+      }
+  std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable, tight, reachable);
+  EXPECT_GT(reachable, 1000);
+  EXPECT_GT(ratio_sum / reachable, 0.2);  // and it carries information
+}
+
+TEST(HeuristicGridTest, GoalsCachedAndGridsShared) {
+  auto map = test::randomMap(60, 60, 0.05, 4, 0, 0);  // no obstacles: the openings equal free space
+  LatticeConfig c;
+  c.robot_radius = 0.0;
+  LatticeFixture f = makeFixture(map, c);
+  auto h = f.builder->compute(10, 10, 0);
+  ASSERT_TRUE(h->grids[1] && h->grids[2] && h->grids[3]);
+  EXPECT_EQ(h->grids[1], h->grids[2]);  // identical levels: computed once
+  EXPECT_EQ(h->grids[2], h->grids[3]);
+  EXPECT_EQ(h->grids[0]->at(10, 10), 0u);
+}
+
+}  // namespace
+}  // namespace lattice
+}  // namespace amha

@@ -1,0 +1,54 @@
+#include "test_support.h"
+
+#include <cstdlib>
+#include <random>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace amha {
+namespace lattice {
+namespace test {
+
+std::string sharedData() {
+  const char* env = std::getenv("AMHA_SHARED_DATA");
+  std::string dir = env != nullptr ? env : "../shared/data";
+  struct stat st;
+  if (stat((dir + "/sbpl/pr2.mprim").c_str(), &st) != 0) return "";
+  return dir;
+}
+
+std::string tempDir() {
+  char tmpl[] = "/tmp/amha_lattice_test_XXXXXX";
+  const char* d = mkdtemp(tmpl);
+  return d != nullptr ? std::string(d) : std::string("/tmp");
+}
+
+std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed, int obstacles,
+                                   int cost_max) {
+  auto m = std::make_shared<GridMap>();
+  m->width = width;
+  m->height = height;
+  m->resolution = resolution;
+  m->cost.assign(static_cast<std::size_t>(width) * height, 0);
+  std::mt19937 rng(seed);
+  if (cost_max > 0) {
+    std::uniform_int_distribution<int> c(0, cost_max);
+    for (auto& v : m->cost) v = static_cast<std::uint8_t>(c(rng));
+  }
+  std::uniform_int_distribution<int> rx(0, width - 1), ry(0, height - 1), rs(1, std::max(2, width / 6));
+  for (int k = 0; k < obstacles; ++k) {
+    const int x0 = rx(rng), y0 = ry(rng), w = rs(rng), h = rs(rng);
+    for (int y = y0; y < std::min(height, y0 + h); ++y) {
+      for (int x = x0; x < std::min(width, x0 + w); ++x) m->cost[static_cast<std::size_t>(y) * width + x] = kLethalCost;
+    }
+  }
+  return m;
+}
+
+std::vector<std::array<double, 2>> rectangle(double hl, double hw) {
+  return {{-hl, -hw}, {hl, -hw}, {hl, hw}, {-hl, hw}};
+}
+
+}  // namespace test
+}  // namespace lattice
+}  // namespace amha

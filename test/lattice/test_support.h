@@ -1,0 +1,30 @@
+// Helpers for the lattice tests: shared data paths, temp dirs, small random maps.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "amha_planner/lattice/lattice_planner.h"
+
+namespace amha {
+namespace lattice {
+namespace test {
+
+/// ../shared/data from AMHA_SHARED_DATA, or "" if absent (tests then GTEST_SKIP).
+std::string sharedData();
+/// A fresh empty directory under /tmp.
+std::string tempDir();
+/// A width x height map at `resolution` with random rectangular obstacles (lethal) and random
+/// cell costs in 0..cost_max elsewhere; a border of free cells is left around (x0, y0) spots.
+std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
+                                   int obstacles, int cost_max);
+/// A small rectangular footprint (half length, half width in metres).
+std::vector<std::array<double, 2>> rectangle(double half_length, double half_width);
+
+}  // namespace test
+}  // namespace lattice
+}  // namespace amha
+
+#define AMHA_REQUIRE_SHARED_DATA(var)                                     \
+  const std::string var = ::amha::lattice::test::sharedData();            \
+  if (var.empty()) GTEST_SKIP() << "shared data (AMHA_SHARED_DATA) absent"
