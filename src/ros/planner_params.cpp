@@ -152,6 +152,9 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.nominal_speed = getDouble(pnh, "nominal_speed", l.nominal_speed, 1e-3, 100.0);
   l.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.time_to_turn_45, 0.0, 1000.0);
   l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
+  l.coarse_anchor = getBool(pnh, "coarse_anchor", l.coarse_anchor);
+  l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, 1024);
+  l.backward_search = getBool(pnh, "backward_search", l.backward_search);
   l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
   // Map.
   p.occupancy.lethal_threshold =
