@@ -12,7 +12,7 @@ if(catkin_FOUND)
   generate_messages(DEPENDENCIES std_msgs geometry_msgs nav_msgs actionlib_msgs)
   catkin_package(
     INCLUDE_DIRS include
-    LIBRARIES amha_search
+    LIBRARIES amha_search amha_lattice amha_ros
     CATKIN_DEPENDS roscpp nodelet std_msgs geometry_msgs nav_msgs visualization_msgs actionlib
                    actionlib_msgs tf2 tf2_ros tf2_geometry_msgs message_runtime)
 else()

@@ -8,6 +8,7 @@
 #include <actionlib/client/simple_action_client.h>
 #include <nav_msgs/GetPlan.h>
 #include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "amha_planner/Plan.h"
 #include "amha_planner/PlanAnytimeAction.h"
@@ -89,6 +90,22 @@ TEST(PlannerNodeWithoutMap, BadMapsAreRefusedThenAGoodMapIsUsed) {
   }
   ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
   EXPECT_EQ(checkPathCollisionFree(res.path, testMap(), testFootprint(), 65), "");
+  // The footprint, given as a costmap_2d-style string, was parsed into the test's rectangle:
+  // the start's outline on ~footprints has exactly its corners.
+  const auto markers = ros::topic::waitForMessage<visualization_msgs::MarkerArray>(
+      "/planner/footprints", ros::Duration(5));
+  ASSERT_TRUE(markers);
+  const visualization_msgs::Marker* outline = nullptr;
+  for (const auto& m : markers->markers) {
+    if (m.ns == "start_footprint") outline = &m;
+  }
+  ASSERT_NE(outline, nullptr);
+  const auto corners = testFootprint();
+  ASSERT_EQ(outline->points.size(), 2 * corners.size());  // one segment per side
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    EXPECT_NEAR(outline->points[2 * i].x, kStart.pose.position.x + corners[i][0], 1e-9);
+    EXPECT_NEAR(outline->points[2 * i].y, kStart.pose.position.y + corners[i][1], 1e-9);
+  }
 }
 
 }  // namespace
