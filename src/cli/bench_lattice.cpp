@@ -103,6 +103,42 @@ std::vector<Query> randomQueries(const lattice::LatticeGraph& g, int count, unsi
   return out;
 }
 
+// Times the per-goal heuristic tables alone: all of them (in parallel) and each one alone.
+std::string gridTimingReport(const lattice::LatticeGraph& graph, int goals, unsigned seed) {
+  lattice::HeuristicGridBuilder builder(graph);
+  const std::vector<Query> qs = randomQueries(graph, goals, seed + 1, 0.0);
+  std::vector<double> all, single[lattice::kNumGridKinds];
+  for (const Query& q : qs) {
+    int x, y, h;
+    graph.poseToState(q.goal, &x, &y, &h);
+    all.push_back(builder.compute(x, y, h, true)->seconds);
+    for (int k = 0; k < lattice::kNumGridKinds; ++k) {
+      if (!builder.needed(static_cast<lattice::GridKind>(k))) continue;
+      const auto t0 = std::chrono::steady_clock::now();
+      builder.computeOne(static_cast<lattice::GridKind>(k), x, y);
+      single[k].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  std::ostringstream out;
+  char line[200];
+  std::snprintf(line, sizeof line, "heuristic tables for one goal, median of %zu goals: all (parallel) %.4f s; alone:", qs.size(), median(all));
+  out << line;
+  const char* names[lattice::kNumGridKinds] = {"anchor grid", "point robot", "inscribed opening", "circumscribed opening"};
+  for (int k = 0; k < lattice::kNumGridKinds; ++k) {
+    if (single[k].empty()) continue;
+    std::snprintf(line, sizeof line, " %s %.4f s;", names[k], median(single[k]));
+    out << line;
+  }
+  out << " (grids shared between identical kinds are computed once in 'all')\n";
+  return out.str();
+}
+
+int gridTiming(const lattice::LatticeGraph& graph, int goals, unsigned seed, const std::string& command) {
+  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(), machine().c_str(), gitCommit().c_str(),
+              graph.width(), graph.height(), gridTimingReport(graph, goals, seed).c_str());
+  return kExitOk;
+}
+
 int benchLatticeMain(int argc, char** argv) {
   CLI::App app("Runs anytime algorithms on start/goal pairs on a map and writes the median cost and "
                "certified bound vs time (PNG + CSV) and a summary into --out-dir.", argv[0]);
@@ -142,10 +178,11 @@ int benchLatticeMain(int argc, char** argv) {
       algorithms.push_back(alg);
     }
   }
-  if (algorithms.empty() || !(time_limit > 0.0) || num_queries < 1) {
-    std::cerr << "amha bench lattice: need algorithms, a positive time limit and queries\n";
+  if (algorithms.empty() || !(time_limit > 0.0) || num_queries < 0 || (num_queries == 0 && grid_timing <= 0)) {
+    std::cerr << "amha bench lattice: need algorithms, a positive time limit and queries (or --queries 0 --grid-timing N)\n";
     return kExitUsage;
   }
+  const bool grids_only = num_queries == 0 && query_texts.empty();
 
   LoadedLattice loaded;
   std::unique_ptr<lattice::LatticeGraph> graph;
@@ -159,7 +196,7 @@ int benchLatticeMain(int argc, char** argv) {
       if (semi == std::string::npos) throw std::invalid_argument("--query '" + q + "' is not \"sx,sy,st;gx,gy,gt\"");
       queries.push_back({parsePose(q.substr(0, semi), "--query start"), parsePose(q.substr(semi + 1), "--query goal")});
     }
-    if (queries.empty()) queries = randomQueries(*graph, num_queries, seed, min_distance);
+    if (queries.empty() && !grids_only) queries = randomQueries(*graph, num_queries, seed, min_distance);
     // One planner per algorithm: every query has a new goal, so no run reuses cached grids.
     for (std::size_t a = 0; a < algorithms.size(); ++a) planners.emplace_back(new lattice::LatticePlanner(loaded.map, loaded.config));
   } catch (const lattice::LatticeError& e) {
@@ -169,10 +206,11 @@ int benchLatticeMain(int argc, char** argv) {
     std::cerr << "amha bench lattice: " << e.what() << "\n";
     return kExitUsage;
   }
-  if (queries.empty()) {
+  if (queries.empty() && !grids_only) {
     std::cerr << "amha bench lattice: found no valid start/goal pair on this map\n";
     return kExitBadInstances;
   }
+  if (grids_only) return gridTiming(*graph, grid_timing, seed, commandLine(argc, argv));
   const std::string command = commandLine(argc, argv);
   std::printf("%s\n%zu queries, %zu algorithms, %.1f s each\n", command.c_str(), queries.size(), algorithms.size(), time_limit);
 
@@ -273,20 +311,7 @@ int benchLatticeMain(int argc, char** argv) {
     sum << row;
   }
 
-  if (grid_timing > 0) {
-    lattice::HeuristicGridBuilder builder(*graph);
-    const std::vector<Query> goals = randomQueries(*graph, grid_timing, seed + 1, 0.0);
-    std::vector<double> secs;
-    for (const Query& q : goals) {
-      int x, y, h;
-      graph->poseToState(q.goal, &x, &y, &h);
-      secs.push_back(builder.compute(x, y, h, true)->seconds);
-    }
-    char line[200];
-    std::snprintf(line, sizeof line, "\nheuristic tables for one goal (anchor grid, coarse abstraction, inadmissible grids), "
-                  "median of %zu goals: %.4f s\n", secs.size(), median(secs));
-    sum << line;
-  }
+  if (grid_timing > 0) sum << "\n" << gridTimingReport(*graph, grid_timing, seed);
   std::cout << "\n" << sum.str();
 
   try {
