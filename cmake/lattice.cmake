@@ -28,6 +28,8 @@ target_sources(amha PRIVATE
   src/cli/lattice_options.cpp
   src/cli/lattice_image.cpp
   src/cli/plan_command.cpp
+  src/cli/bench_command.cpp
+  src/cli/bench_lattice.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
 

@@ -154,8 +154,16 @@ void LatticeGraph::buildClearanceAndOpenings() {
   if (config_.num_inadmissible < 2) return;
   // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
   // obstacle. Both steps are exact Euclidean distance transforms.
-  const double radii[2] = {footprint_.inscribed_radius, footprint_.circumscribed_radius};
+  // A round robot's inscribed and circumscribed radii are both its radius (the polygon that
+  // approximates the circle is only for the footprint cells).
+  const bool round = config_.footprint.empty();
+  const double radii[2] = {round ? config_.robot_radius : footprint_.inscribed_radius,
+                           round ? config_.robot_radius : footprint_.circumscribed_radius};
   for (int k = 0; k < 2; ++k) {
+    if (k == 1 && radii[1] == radii[0]) {
+      opened_[1] = opened_[0];
+      break;
+    }
     const double r = radii[k] / map_->resolution;
     std::vector<std::uint8_t>& out = opened_[k];
     out.assign(static_cast<std::size_t>(w) * h, 0);
