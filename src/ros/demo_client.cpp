@@ -4,6 +4,9 @@
 // Parameters: ~start and ~goal ([x, y, yaw] in the map frame), ~time_budget (s), ~algorithm
 // (""), ~output_image (PNG path, "" for none), ~frame_id ("map"), ~wait (s to wait for the
 // map and the server). The action is "plan_anytime" (remap it to the planner's).
+// With ~robot_tf (default true) the client also stands in for the robot: it publishes the
+// static transform frame_id -> ~robot_frame ("base_link") at ~start and asks for a plan from
+// "wherever the robot is" (an empty start frame), so the planner takes the start from tf2.
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -15,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 
 #include "amha_planner/PlanAnytimeAction.h"
 #include "amha_planner/ros/conversions.h"
@@ -114,9 +118,12 @@ void drawPicture(const nav_msgs::OccupancyGrid& map,
 int main(int argc, char** argv) {
   ros::init(argc, argv, "demo_client");
   ros::NodeHandle nh, pnh("~");
-  std::string frame, output_image, algorithm;
+  std::string frame, output_image, algorithm, robot_frame;
   double time_budget = 10.0, wait = 60.0;
+  bool robot_tf = true;
   pnh.param<std::string>("frame_id", frame, "map");
+  pnh.param<std::string>("robot_frame", robot_frame, "base_link");
+  pnh.param("robot_tf", robot_tf, robot_tf);
   pnh.param<std::string>("output_image", output_image, "");
   pnh.param<std::string>("algorithm", algorithm, "");
   pnh.param("time_budget", time_budget, time_budget);
@@ -127,6 +134,19 @@ int main(int argc, char** argv) {
   }
   goal.time_budget = time_budget;
   goal.algorithm = algorithm;
+  const geometry_msgs::PoseStamped start = goal.start;
+  tf2_ros::StaticTransformBroadcaster robot_broadcaster;
+  if (robot_tf) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = ros::Time::now();
+    t.header.frame_id = frame;
+    t.child_frame_id = robot_frame;
+    t.transform.translation.x = start.pose.position.x;
+    t.transform.translation.y = start.pose.position.y;
+    t.transform.rotation = start.pose.orientation;
+    robot_broadcaster.sendTransform(t);
+    goal.start = geometry_msgs::PoseStamped();  // empty frame: the robot's pose from tf2
+  }
 
   ros::AsyncSpinner spinner(2);
   spinner.start();
@@ -158,9 +178,10 @@ int main(int argc, char** argv) {
   }
   ros::WallDuration(0.5).sleep();  // let the planner build its lattice for the latched map
 
-  std::printf("demo: planning from (%.2f, %.2f) to (%.2f, %.2f) in '%s', budget %.1f s\n",
-              goal.start.pose.position.x, goal.start.pose.position.y,
-              goal.goal.pose.position.x, goal.goal.pose.position.y, frame.c_str(), time_budget);
+  std::printf("demo: planning from %s(%.2f, %.2f) to (%.2f, %.2f) in '%s', budget %.1f s\n",
+              robot_tf ? "the robot's pose on tf, " : "", start.pose.position.x,
+              start.pose.position.y, goal.goal.pose.position.x, goal.goal.pose.position.y,
+              frame.c_str(), time_budget);
   std::printf("demo: %4s %10s %12s %9s %10s %7s %7s %12s\n", "#", "elapsed s", "cost m",
               "bound", "certified", "w1", "w2", "expansions");
   std::fflush(stdout);
@@ -206,7 +227,7 @@ int main(int argc, char** argv) {
                   name.c_str(), result->solutions.size(), result->cost, result->bound,
                   result->certified_bound, result->planning_time);
     std::lock_guard<std::mutex> lock(map_mutex);
-    drawPicture(*map, result->solutions, goal.start, goal.goal, caption, output_image);
+    drawPicture(*map, result->solutions, start, goal.goal, caption, output_image);
   }
   std::printf("demo: finished %s\n", ok ? "SUCCESS" : "FAILED");
   std::fflush(stdout);
