@@ -310,13 +310,19 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     limits.max_memory_bytes = static_cast<std::size_t>(params_.max_memory_mb * 1024.0 * 1024.0);
 
     // Each improvement is published as it is found (~solutions, ~plan, ~footprints).
+    std::vector<amha::StateId> previous_ids;  // state ids identify a path exactly
     const auto on_solution = [&](const lat::LatticeSolution& solution) {
       PlanSolution m = planSolutionMsg(solution, id, frame, stamp);
+      m.same_path_as_previous = !res.solutions.empty() && previous_ids == solution.search.path;
+      previous_ids = solution.search.path;
       solutions_pub_.publish(m);
-      path_pub_.publish(m.path);
-      markers_pub_.publish(
-          footprintMarkers(*planner, solution.poses, s, g, frame, stamp, params_.marker_spacing));
+      if (!m.same_path_as_previous) {
+        path_pub_.publish(m.path);
+        markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, g, frame, stamp,
+                                              params_.marker_spacing));
+      }
       if (sink) sink(m);
+      if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
       res.solutions.push_back(std::move(m));
     };
     const lat::PlanResult result = planner->plan(s, g, config, limits, on_solution);
@@ -331,7 +337,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     const auto status = result.search.status;
     if (!res.solutions.empty()) {
       const PlanSolution& best = res.solutions.back();
-      res.path = best.path;
+      res.path = pathFromPoses(result.solutions.back().poses, frame, stamp);
       res.cost = best.cost;
       res.bound = best.bound;
       res.certified_bound = best.certified_bound;

@@ -134,6 +134,23 @@ void expectMonotone(const std::vector<PlanSolution>& solutions) {
   }
 }
 
+// In a response's solutions[], a path repeated from the previous solution is left out.
+void expectSolutionPaths(const std::vector<PlanSolution>& solutions,
+                         const geometry_msgs::PoseStamped& start,
+                         const geometry_msgs::PoseStamped& goal) {
+  ASSERT_FALSE(solutions.empty());
+  EXPECT_FALSE(solutions.front().same_path_as_previous);
+  for (std::size_t i = 0; i < solutions.size(); ++i) {
+    const auto& s = solutions[i];
+    if (s.same_path_as_previous) {
+      EXPECT_TRUE(s.path.poses.empty()) << "solution " << i;
+      EXPECT_DOUBLE_EQ(s.cost, solutions[i - 1].cost) << "solution " << i;
+    } else {
+      expectValidPath(s.path, start, goal, testMap());
+    }
+  }
+}
+
 // A query across the rooms (through a door) and one through the whole maze (a long search).
 const geometry_msgs::PoseStamped kRoomStart = pose(0.0, 0.0, 0.0, "map");
 const geometry_msgs::PoseStamped kRoomGoal = pose(9.0, 4.0, M_PI / 2, "map");
@@ -160,17 +177,20 @@ TEST(PlannerNodelet, PlanSucceedsWithAValidPathAndStreamsItsSolutions) {
   EXPECT_EQ(res.path.poses.size(), best.path.poses.size());
   // The straight-line distance is a lower bound on the cost (metres-equivalent).
   EXPECT_GE(res.cost + 1e-6, std::hypot(9.0, 4.0));
-  for (const auto& s : res.solutions) {
-    expectValidPath(s.path, kRoomStart, kRoomGoal, testMap());
-    EXPECT_EQ(s.request_id, res.request_id);
-  }
-  // ~solutions carried the same solutions, in order.
+  expectSolutionPaths(res.solutions, kRoomStart, kRoomGoal);
+  for (const auto& s : res.solutions) EXPECT_EQ(s.request_id, res.request_id);
+  // ~solutions carried the same solutions, in order, each with its full path.
   const auto streamed = solutionsOf(res.request_id, res.solutions.size());
   ASSERT_EQ(streamed.size(), res.solutions.size());
   expectMonotone(streamed);
   for (std::size_t i = 0; i < streamed.size(); ++i) {
     EXPECT_DOUBLE_EQ(streamed[i].cost, res.solutions[i].cost);
     EXPECT_DOUBLE_EQ(streamed[i].bound, res.solutions[i].bound);
+    EXPECT_EQ(streamed[i].same_path_as_previous, res.solutions[i].same_path_as_previous);
+    expectValidPath(streamed[i].path, kRoomStart, kRoomGoal, testMap());
+    if (i > 0 && streamed[i].same_path_as_previous) {
+      EXPECT_EQ(streamed[i].path.poses.size(), streamed[i - 1].path.poses.size());
+    }
   }
   // ~plan (latched) holds the latest path; ~footprints the markers along it.
   auto latched = ros::topic::waitForMessage<nav_msgs::Path>("/planner/plan", ros::Duration(5));
@@ -221,8 +241,10 @@ TEST(PlannerNodelet, ActionSendsOneFeedbackPerSolution) {
   ASSERT_EQ(feedback.size(), result->solutions.size());
   for (std::size_t i = 0; i < feedback.size(); ++i) {
     EXPECT_DOUBLE_EQ(feedback[i].cost, result->solutions[i].cost);
+    expectValidPath(feedback[i].path, kRoomStart, kRoomGoal, testMap());  // always a full path
   }
   expectMonotone(feedback);
+  expectSolutionPaths(result->solutions, kRoomStart, kRoomGoal);
 }
 
 TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
@@ -269,11 +291,12 @@ TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
     ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(5), [&] { return done; }));
   }
   const double latency = std::chrono::duration<double>(done_at - cancelled_at).count();
-  std::printf("[ INFO     ] cancel -> result: %.1f ms, %zu solution(s) before it\n",
-              latency * 1e3, feedback.size());
+  const auto result = client.getResult();
+  std::printf("[ INFO     ] cancel -> result: %.1f ms, %zu solution(s) before it, result %u kB\n",
+              latency * 1e3, feedback.size(),
+              ros::serialization::serializationLength(*result) / 1024);
   EXPECT_LT(latency, 0.050) << "the result must arrive within 50 ms of the cancel";
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
-  const auto result = client.getResult();
   EXPECT_EQ(result->status, PlanAnytimeResult::CANCELLED) << result->message;
   ASSERT_FALSE(result->solutions.empty());
   std::lock_guard<std::mutex> lock(m);
@@ -441,9 +464,7 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
   ASSERT_EQ(result->status, PlanAnytimeResult::SUCCESS) << result->message;
   expectValidPath(result->path, kMazeStart, kMazeGoal, testMap());  // the map it started on
   expectMonotone(result->solutions);
-  for (const auto& s : result->solutions) {
-    expectValidPath(s.path, kMazeStart, kMazeGoal, testMap());
-  }
+  expectSolutionPaths(result->solutions, kMazeStart, kMazeGoal);
   // The next requests use the new map: the maze cannot be reached any more.
   EXPECT_TRUE(waitForProbe(Status::INVALID_START, 20.0)) << "the new map was not adopted";
   const auto closed = plan(kMazeStart, kMazeGoal, 5.0);
