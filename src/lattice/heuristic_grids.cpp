@@ -243,18 +243,82 @@ void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
   }
 }
 
+// The 8-connected case, unrolled: the four side neighbours are read once and serve as the
+// corner cells of the diagonal moves. Same result as the generic loop (moves in gridMoves(8)
+// order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1)).
+template <class Queue>
+void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+  const std::uint8_t* __restrict level = kind.level.data();
+  const std::int64_t pw = width_ + 4;
+  const std::uint32_t* step = kind.step.data();
+  const std::uint32_t* s_sw = step + 0 * 256;
+  const std::uint32_t* s_s = step + 1 * 256;
+  const std::uint32_t* s_se = step + 2 * 256;
+  const std::uint32_t* s_w = step + 3 * 256;
+  const std::uint32_t* s_e = step + 4 * 256;
+  const std::uint32_t* s_nw = step + 5 * 256;
+  const std::uint32_t* s_n = step + 6 * 256;
+  const std::uint32_t* s_ne = step + 7 * 256;
+  dist[goal] = 0;
+  queue.push(0, goal);
+  while (!queue.empty()) {
+    const auto [d, i] = queue.pop();
+    if (d != dist[i]) continue;
+    const unsigned c0 = level[i];
+    const unsigned lw = level[i - 1], le = level[i + 1], ls = level[i - pw], ln = level[i + pw];
+    auto relax = [&](std::size_t j, unsigned c, const std::uint32_t* s) {
+      // Saturating: min(distance, kUnreachable - 1) is still admissible and consistent.
+      const std::uint32_t nd = static_cast<std::uint32_t>(
+          std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + s[c], kUnreachable - 1));
+      if (nd < dist[j]) {
+        dist[j] = nd;
+        queue.push(nd, static_cast<std::uint32_t>(j));
+      }
+    };
+    if (lw != 255) relax(i - 1, std::max(c0, lw), s_w);
+    if (le != 255) relax(i + 1, std::max(c0, le), s_e);
+    if (ls != 255) relax(i - pw, std::max(c0, ls), s_s);
+    if (ln != 255) relax(i + pw, std::max(c0, ln), s_n);
+    if (ls != 255) {
+      const unsigned cs = std::max(c0, ls);
+      if (lw != 255) {
+        const unsigned l = level[i - pw - 1];
+        if (l != 255) relax(i - pw - 1, std::max({cs, lw, l}), s_sw);
+      }
+      if (le != 255) {
+        const unsigned l = level[i - pw + 1];
+        if (l != 255) relax(i - pw + 1, std::max({cs, le, l}), s_se);
+      }
+    }
+    if (ln != 255) {
+      const unsigned cn = std::max(c0, ln);
+      if (lw != 255) {
+        const unsigned l = level[i + pw - 1];
+        if (l != 255) relax(i + pw - 1, std::max({cn, lw, l}), s_nw);
+      }
+      if (le != 255) {
+        const unsigned l = level[i + pw + 1];
+        if (l != 255) relax(i + pw + 1, std::max({cn, le, l}), s_ne);
+      }
+    }
+  }
+}
+
 void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* dist) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
   std::fill(dist, dist + total, kUnreachable);
   const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
   if (kind.level[goal] == 255) return;
-  if (kind.max_step < 4096) {
+  const bool eight = kind.move_offsets.size() == 8;
+  // Dial's queue needs every key within max_step of the current one, so it is used only when
+  // no distance can reach the saturation value.
+  if (kind.max_step < 4096 && static_cast<std::uint64_t>(total) * kind.max_step < kUnreachable - 1) {
     DialQueue q(kind.max_step);
-    dijkstra(kind, goal, dist, q);
+    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
   } else {
     detail::RadixHeap q;
-    dijkstra(kind, goal, dist, q);
+    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
   }
 }
 

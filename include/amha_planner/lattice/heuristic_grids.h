@@ -1,5 +1,5 @@
 // 2-D Dijkstra grids from the goal, the heuristics of the lattice search:
-//  - the anchor's grid: a 16-connected, cost-aware Dijkstra over the cells the robot's centre
+//  - the anchor's grid: an 8-connected, cost-aware Dijkstra over the cells the robot's centre
 //    may occupy, with step costs scaled so that it is a relaxation of the lattice (admissible
 //    and consistent, see LatticeGraph::gridAnchorUnitsPerCell);
 //  - the inadmissible ones (the paper's): an 8-connected Dijkstra for a point robot, and the
@@ -98,6 +98,8 @@ class HeuristicGridBuilder {
   void run(const Kind& kind, int goal_x, int goal_y, std::uint32_t* dist) const;
   template <class Queue>
   void dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const;
+  template <class Queue>
+  void dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;
