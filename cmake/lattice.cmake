@@ -15,6 +15,7 @@ add_library(amha_lattice
   src/lattice/footprint.cpp
   src/lattice/lattice_graph.cpp
   src/lattice/heuristic_grids.cpp
+  src/lattice/coarse_lattice.cpp
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
 )
@@ -27,6 +28,8 @@ target_sources(amha PRIVATE
   src/cli/lattice_options.cpp
   src/cli/lattice_image.cpp
   src/cli/plan_command.cpp
+  src/cli/bench_command.cpp
+  src/cli/bench_lattice.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
 

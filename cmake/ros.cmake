@@ -1,1 +1,77 @@
-# ROS layer targets (nodelet, node, rostests).
+# ROS layer targets: the planning server library, the nodelet and the node, the map publisher
+# and demo client, the ament index pluginlib needs, and the rostest nodes.
+# Only message/param conversion, tf2 and threads live here; planning is amha_lattice's.
+find_library(AMHA_CLASS_LOADER_LIB class_loader REQUIRED)
+
+# The server: shared by the nodelet and the standalone node.
+add_library(amha_ros
+  src/ros/conversions.cpp
+  src/ros/planner_params.cpp
+  src/ros/plan_queue.cpp
+  src/ros/planner_server.cpp
+)
+target_include_directories(amha_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+target_link_libraries(amha_ros PUBLIC amha_lattice ${catkin_LIBRARIES} Threads::Threads)
+add_dependencies(amha_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
+
+# amha_planner/PlannerNodelet, in devel/lib/libamha_planner_nodelet.so (nodelet_plugins.xml).
+add_library(amha_planner_nodelet SHARED src/ros/planner_nodelet.cpp)
+target_link_libraries(amha_planner_nodelet PRIVATE amha_ros ${AMHA_CLASS_LOADER_LIB})
+
+add_executable(planner_node src/ros/planner_node.cpp)
+target_link_libraries(planner_node PRIVATE amha_ros)
+
+# Publishes a map_server YAML + image as a latched OccupancyGrid (map_server is not in Debian).
+add_executable(map_publisher src/ros/map_publisher.cpp)
+target_link_libraries(map_publisher PRIVATE amha_ros)
+
+# The demo's client: asks for a plan, prints every improvement, draws them on the map.
+add_executable(demo_client src/ros/demo_client.cpp)
+target_include_directories(demo_client PRIVATE ${OpenCV_INCLUDE_DIRS})
+target_link_libraries(demo_client PRIVATE amha_ros ${OpenCV_LIBS})
+
+# Debian's pluginlib 5 finds nodelets through the ament resource index of each prefix in
+# AMENT_PREFIX_PATH; write it into the devel space (and install it below).
+set(_amha_index ${CATKIN_DEVEL_PREFIX}/share/ament_index/resource_index)
+file(WRITE ${_amha_index}/packages/${PROJECT_NAME} "")
+file(WRITE ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
+     "share/${PROJECT_NAME}/nodelet_plugins.xml")
+configure_file(nodelet_plugins.xml ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/nodelet_plugins.xml
+               COPYONLY)
+configure_file(package.xml ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/package.xml COPYONLY)
+
+# The libraries the nodelet loads (catkin builds them shared) go to the install space too.
+foreach(_lib amha_search amha_lattice)
+  if(TARGET ${_lib})
+    install(TARGETS ${_lib} LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+            ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+  endif()
+endforeach()
+install(TARGETS amha_ros amha_planner_nodelet
+        LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+        ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(TARGETS planner_node map_publisher demo_client
+        RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY include/amha_planner DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+install(FILES nodelet_plugins.xml package.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY launch config maps DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(FILES ${_amha_index}/packages/${PROJECT_NAME}
+        DESTINATION share/ament_index/resource_index/packages)
+install(FILES ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
+        DESTINATION share/ament_index/resource_index/nodelet__pluginlib__plugin)
+
+# Unit tests of the ROS-free parts of the server.
+amha_add_gtest(amha_ros_unit_tests
+  SOURCES test/ros/plan_queue_test.cpp test/ros/conversions_test.cpp
+  LIBS amha_ros)
+
+# rostest nodes (test/ros/*.test, run by scripts/test). Built with everything, into the devel
+# space, so that rostest finds them by package and name.
+function(amha_add_rostest_node name)
+  add_executable(${name} ${ARGN})
+  target_link_libraries(${name} PRIVATE amha_ros GTest::gtest)
+endfunction()
+amha_add_rostest_node(planner_rostest test/ros/planner_rostest.cpp test/ros/rostest_support.cpp)
+amha_add_rostest_node(no_map_rostest test/ros/no_map_rostest.cpp test/ros/rostest_support.cpp)
+add_executable(static_tf_publisher test/ros/static_tf_publisher.cpp)
+target_link_libraries(static_tf_publisher PRIVATE amha_ros)

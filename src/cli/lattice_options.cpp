@@ -28,7 +28,11 @@ void LatticeOptions::addTo(CLI::App& app) {
   app.add_option("--nominal-speed", nominal_speed, "m/s, for costing turns (default 0.4; .cfg: the file's)");
   app.add_option("--turn-time-45", turn_time_45, "seconds to turn 45 degrees in place (default 0.6; .cfg: the file's)");
   app.add_option("--inadmissible", inadmissible, "number of inadmissible heuristics 0..3 (default 3)");
-  app.add_flag("--euclidean-anchor", euclidean_anchor, "anchor = Euclidean distance only (the paper's), no grid");
+  app.add_option("--anchor", anchor,
+                 "admissible anchor heuristic: euclidean (the paper's) | grid (+ a 16-connected grid "
+                 "relaxation) | coarse (+ a block abstraction of the lattice; default)");
+  app.add_option("--coarse-block", coarse_block, "cells per block side of the coarse anchor (default 0 = automatic)");
+  app.add_flag("--backward", backward, "search from the goal back to the start (as SBPL does by default)");
 }
 
 lattice::Pose2D parsePose(const std::string& text, const char* what) {
@@ -92,7 +96,13 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   if (o.nominal_speed >= 0.0) c.nominal_speed = o.nominal_speed;
   if (o.turn_time_45 >= 0.0) c.time_to_turn_45 = o.turn_time_45;
   c.num_inadmissible = o.inadmissible;
-  c.grid_anchor = !o.euclidean_anchor;
+  if (o.anchor != "euclidean" && o.anchor != "grid" && o.anchor != "coarse") {
+    throw std::invalid_argument("--anchor must be euclidean, grid or coarse, not '" + o.anchor + "'");
+  }
+  c.grid_anchor = o.anchor != "euclidean";
+  c.coarse_anchor = o.anchor == "coarse";
+  c.coarse_block = o.coarse_block;
+  c.backward_search = o.backward;
   return out;
 }
 

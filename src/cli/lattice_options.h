@@ -27,7 +27,9 @@ struct LatticeOptions {
   double radius = -1.0;  // < 0: not given
   double cost_penalty = -1.0, nominal_speed = -1.0, turn_time_45 = -1.0;  // < 0: default
   int inadmissible = 3;
-  bool euclidean_anchor = false;
+  std::string anchor = "coarse";
+  int coarse_block = 0;
+  bool backward = false;
 
   void addTo(CLI::App& app);
 };

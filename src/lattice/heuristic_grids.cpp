@@ -9,45 +9,10 @@
 #include <thread>
 
 #include "amha_planner/lattice/lattice_graph.h"
+#include "radix_heap.h"
 
 namespace amha {
 namespace lattice {
-
-namespace {
-
-// Monotone priority queue for integer keys (Ahuja et al.'s radix heap): pops never go below
-// the last popped key, which Dijkstra guarantees.
-class RadixHeap {
- public:
-  bool empty() const { return size_ == 0; }
-  void push(std::uint32_t key, std::uint32_t value) {
-    buckets_[bucket(key)].push_back({key, value});
-    ++size_;
-  }
-  std::pair<std::uint32_t, std::uint32_t> pop() {
-    if (buckets_[0].empty()) {
-      int i = 1;
-      while (buckets_[i].empty()) ++i;
-      std::uint32_t m = std::numeric_limits<std::uint32_t>::max();
-      for (const auto& e : buckets_[i]) m = std::min(m, e.first);
-      last_ = m;
-      for (const auto& e : buckets_[i]) buckets_[bucket(e.first)].push_back(e);
-      buckets_[i].clear();
-    }
-    const auto e = buckets_[0].back();
-    buckets_[0].pop_back();
-    --size_;
-    return e;
-  }
-
- private:
-  int bucket(std::uint32_t key) const { return key == last_ ? 0 : 32 - __builtin_clz(key ^ last_); }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> buckets_[33];
-  std::uint32_t last_ = 0;
-  std::size_t size_ = 0;
-};
-
-}  // namespace
 
 std::vector<GridMove> gridMoves(int connectivity) {
   std::vector<GridMove> moves;
@@ -110,7 +75,7 @@ double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std
 }
 
 std::size_t GoalHeuristics::bytes() const {
-  std::size_t b = sizeof(*this);
+  std::size_t b = sizeof(*this) + coarse.capacity() * sizeof(std::uint32_t);
   for (int k = 0; k < kNumGridKinds; ++k) {
     bool shared = false;
     for (int j = 0; j < k; ++j) shared = shared || grids[j] == grids[k];
@@ -127,21 +92,37 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
   needed_[2] = c.num_inadmissible >= 2;
   needed_[3] = c.num_inadmissible >= 3;
   // The anchor's grid: cells the centre may occupy (below inscribed), admissible scale.
-  if (needed_[0]) buildKind(0, 16, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1);
+  if (needed_[0]) buildKind(0, kAnchorConnectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1);
   const double s = graph.cheapestUnitsPerCell();
-  if (needed_[1]) buildKind(1, 8, s, nullptr, kLethalCost - 1);
+  if (needed_[1]) {
+    buildKind(1, 8, s, nullptr, kLethalCost - 1);
+    // Without inscribed cells the point robot's grid is the anchor's (same cells, same moves)
+    // at another scale: compute it once.
+    if (needed_[0] && kAnchorConnectivity == 8 && kinds_[1].level == kinds_[0].level && graph.gridAnchorUnitsPerCell() > 0) {
+      alias_[1] = 0;
+      scale_[1] = s / graph.gridAnchorUnitsPerCell();
+    }
+  }
   if (needed_[2]) {
     buildKind(2, 8, s, &graph.openedFree(0), kLethalCost - 1);
-    if (needed_[1] && kinds_[2].level == kinds_[1].level) alias_[2] = 1;
+    if (needed_[1] && kinds_[2].level == kinds_[1].level) {
+      alias_[2] = alias_[1];
+      scale_[2] = scale_[1];
+    }
   }
   if (needed_[3]) {
     if (needed_[2] && graph.openingsEqual()) {
       alias_[3] = alias_[2];
+      scale_[3] = scale_[2];
     } else {
       buildKind(3, 8, s, &graph.openedFree(1), kLethalCost - 1);
-      if (needed_[1] && kinds_[3].level == kinds_[1].level) alias_[3] = 1;
+      if (needed_[1] && kinds_[3].level == kinds_[1].level) {
+        alias_[3] = alias_[1];
+        scale_[3] = scale_[1];
+      }
     }
   }
+  if (c.grid_anchor && c.coarse_anchor) coarse_.reset(new CoarseLattice(graph, c.coarse_block));
   // Identical kinds share their data (and their result).
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (alias_[k] != k) kinds_[k] = Kind();
@@ -168,6 +149,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   kind.required.clear();
   kind.required_count.clear();
   kind.step.assign(moves.size() * 256, 0);
+  kind.max_step = 0;
   for (std::size_t m = 0; m < moves.size(); ++m) {
     const GridMove& mv = moves[m];
     kind.move_offsets.push_back(static_cast<std::int64_t>(mv.dy) * pw + mv.dx);
@@ -185,27 +167,57 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
     for (int c = 0; c < 256; ++c) {
       const double step = units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));
+      if (c <= 252) kind.max_step = std::max(kind.max_step, kind.step[m * 256 + c]);
     }
   }
 }
 
-void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* dist) const {
-  const int pw = width_ + 4;
-  const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
-  std::fill(dist, dist + total, kUnreachable);
-  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
-  const std::uint8_t* level = kind.level.data();
-  if (level[goal] == 255) return;
+namespace {
+
+// Dial's bucket queue: exact for integer keys when every step is below the bucket count, and
+// O(1) per operation, which beats a heap when the steps are small (most maps).
+class DialQueue {
+ public:
+  explicit DialQueue(std::uint32_t max_step) {
+    std::uint32_t n = 1;
+    while (n <= max_step) n <<= 1;
+    buckets_.resize(n);
+    mask_ = n - 1;
+  }
+  bool empty() const { return size_ == 0; }
+  void push(std::uint32_t key, std::uint32_t value) {
+    buckets_[key & mask_].push_back(value);
+    ++size_;
+  }
+  std::pair<std::uint32_t, std::uint32_t> pop() {
+    while (buckets_[cur_ & mask_].empty()) ++cur_;
+    std::vector<std::uint32_t>& b = buckets_[cur_ & mask_];
+    const std::uint32_t v = b.back();
+    b.pop_back();
+    --size_;
+    return {cur_, v};
+  }
+
+ private:
+  std::vector<std::vector<std::uint32_t>> buckets_;
+  std::uint32_t mask_ = 0, cur_ = 0;
+  std::size_t size_ = 0;
+};
+
+}  // namespace
+
+template <class Queue>
+void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+  const std::uint8_t* __restrict level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
   const std::int64_t* req = kind.required.data();
   const int* req_count = kind.required_count.data();
   const std::uint32_t* step = kind.step.data();
-  RadixHeap heap;
   dist[goal] = 0;
-  heap.push(0, goal);
-  while (!heap.empty()) {
-    const auto [d, i] = heap.pop();
+  queue.push(0, goal);
+  while (!queue.empty()) {
+    const auto [d, i] = queue.pop();
     if (d != dist[i]) continue;
     const unsigned li = level[i];
     for (std::size_t m = 0; m < nm; ++m) {
@@ -217,10 +229,7 @@ void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* 
       bool blocked = false;
       for (int k = 0; k < req_count[m]; ++k) {
         const unsigned lr = level[static_cast<std::int64_t>(i) + r[k]];
-        if (lr == 255) {
-          blocked = true;
-          break;
-        }
+        blocked |= lr == 255;
         c = std::max(c, lr);
       }
       if (blocked) continue;
@@ -228,9 +237,88 @@ void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* 
       if (nd < dist[j]) {
         const std::uint32_t v = static_cast<std::uint32_t>(std::min<std::uint64_t>(nd, kUnreachable - 1));
         dist[j] = v;
-        heap.push(v, static_cast<std::uint32_t>(j));
+        queue.push(v, static_cast<std::uint32_t>(j));
       }
     }
+  }
+}
+
+// The 8-connected case, unrolled: the four side neighbours are read once and serve as the
+// corner cells of the diagonal moves. Same result as the generic loop (moves in gridMoves(8)
+// order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1)).
+template <class Queue>
+void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+  const std::uint8_t* __restrict level = kind.level.data();
+  const std::int64_t pw = width_ + 4;
+  const std::uint32_t* step = kind.step.data();
+  const std::uint32_t* s_sw = step + 0 * 256;
+  const std::uint32_t* s_s = step + 1 * 256;
+  const std::uint32_t* s_se = step + 2 * 256;
+  const std::uint32_t* s_w = step + 3 * 256;
+  const std::uint32_t* s_e = step + 4 * 256;
+  const std::uint32_t* s_nw = step + 5 * 256;
+  const std::uint32_t* s_n = step + 6 * 256;
+  const std::uint32_t* s_ne = step + 7 * 256;
+  dist[goal] = 0;
+  queue.push(0, goal);
+  while (!queue.empty()) {
+    const auto [d, i] = queue.pop();
+    if (d != dist[i]) continue;
+    const unsigned c0 = level[i];
+    const unsigned lw = level[i - 1], le = level[i + 1], ls = level[i - pw], ln = level[i + pw];
+    auto relax = [&](std::size_t j, unsigned c, const std::uint32_t* s) {
+      // Saturating: min(distance, kUnreachable - 1) is still admissible and consistent.
+      const std::uint32_t nd = static_cast<std::uint32_t>(
+          std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + s[c], kUnreachable - 1));
+      if (nd < dist[j]) {
+        dist[j] = nd;
+        queue.push(nd, static_cast<std::uint32_t>(j));
+      }
+    };
+    if (lw != 255) relax(i - 1, std::max(c0, lw), s_w);
+    if (le != 255) relax(i + 1, std::max(c0, le), s_e);
+    if (ls != 255) relax(i - pw, std::max(c0, ls), s_s);
+    if (ln != 255) relax(i + pw, std::max(c0, ln), s_n);
+    if (ls != 255) {
+      const unsigned cs = std::max(c0, ls);
+      if (lw != 255) {
+        const unsigned l = level[i - pw - 1];
+        if (l != 255) relax(i - pw - 1, std::max({cs, lw, l}), s_sw);
+      }
+      if (le != 255) {
+        const unsigned l = level[i - pw + 1];
+        if (l != 255) relax(i - pw + 1, std::max({cs, le, l}), s_se);
+      }
+    }
+    if (ln != 255) {
+      const unsigned cn = std::max(c0, ln);
+      if (lw != 255) {
+        const unsigned l = level[i + pw - 1];
+        if (l != 255) relax(i + pw - 1, std::max({cn, lw, l}), s_nw);
+      }
+      if (le != 255) {
+        const unsigned l = level[i + pw + 1];
+        if (l != 255) relax(i + pw + 1, std::max({cn, le, l}), s_ne);
+      }
+    }
+  }
+}
+
+void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* dist) const {
+  const int pw = width_ + 4;
+  const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
+  std::fill(dist, dist + total, kUnreachable);
+  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
+  if (kind.level[goal] == 255) return;
+  const bool eight = kind.move_offsets.size() == 8;
+  // Dial's queue needs every key within max_step of the current one, so it is used only when
+  // no distance can reach the saturation value.
+  if (kind.max_step < 4096 && static_cast<std::uint64_t>(total) * kind.max_step < kUnreachable - 1) {
+    DialQueue q(kind.max_step);
+    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
+  } else {
+    detail::RadixHeap q;
+    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
   }
 }
 
@@ -244,17 +332,26 @@ DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) con
   return g;
 }
 
-std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, unsigned threads) const {
+std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, int gh, bool inadmissible,
+                                                                    unsigned threads, bool backward) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<GoalHeuristics>();
   out->goal_x = gx;
   out->goal_y = gy;
+  out->goal_heading = gh;
+  bool wanted[kNumGridKinds];
+  for (int k = 0; k < kNumGridKinds; ++k) wanted[k] = needed_[k] && (k == 0 || inadmissible);
   std::vector<int> tasks;
+  if (coarse_) tasks.push_back(-1);  // the abstraction: usually the longest, so first
   for (int k = 0; k < kNumGridKinds; ++k) {
-    if (needed_[k] && alias_[k] == k) tasks.push_back(k);
+    if (wanted[k] && alias_[k] == k) tasks.push_back(k);
+  }
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    if (wanted[k] && !wanted[alias_[k]] && std::find(tasks.begin(), tasks.end(), alias_[k]) == tasks.end()) tasks.push_back(alias_[k]);
   }
   std::shared_ptr<DistanceGrid> result[kNumGridKinds];
   for (int k : tasks) {
+    if (k < 0) continue;
     result[k] = std::make_shared<DistanceGrid>();
     result[k]->width = width_;
     result[k]->height = height_;
@@ -263,17 +360,27 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
     for (std::size_t t; (t = next.fetch_add(1)) < tasks.size();) {
-      run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist.data());
+      if (tasks[t] < 0) {
+        out->coarse = coarse_->distances(gx, gy, gh, backward);
+        out->coarse_lattice = coarse_.get();
+      } else {
+        run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist.data());
+      }
     }
   };
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  // Starting threads costs more than a small map's grids.
+  if (static_cast<std::size_t>(width_) * height_ < 20000) threads = 1;
   const std::size_t n = std::min<std::size_t>(threads, tasks.size());
   std::vector<std::thread> pool;
   for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
   worker();
   for (auto& th : pool) th.join();
   for (int k = 0; k < kNumGridKinds; ++k) {
-    if (needed_[k]) out->grids[k] = result[alias_[k]];
+    if (wanted[k]) {
+      out->grids[k] = result[alias_[k]];
+      out->scale[k] = scale_[k];
+    }
   }
   out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

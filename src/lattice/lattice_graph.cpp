@@ -83,6 +83,7 @@ void LatticeGraph::buildActions() {
       LatticeAction a;
       a.dx = p.end_dx;
       a.dy = p.end_dy;
+      a.start_heading = p.start_heading;
       a.end_heading = p.end_heading;
       a.primitive = static_cast<int>(i);
       a.end_offset = static_cast<std::int64_t>(a.dy) * map_->width + a.dx;
@@ -124,6 +125,8 @@ void LatticeGraph::buildActions() {
     }
   }
   action_index_[n] = actions_.size();
+  actions_into_.assign(n, {});
+  for (const LatticeAction& a : actions_) actions_into_[a.end_heading].push_back(&a);
   rest_cells_.resize(n);
   for (int h = 0; h < n; ++h) {
     if (!footprint_.polygon.empty()) {
@@ -151,8 +154,16 @@ void LatticeGraph::buildClearanceAndOpenings() {
   if (config_.num_inadmissible < 2) return;
   // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
   // obstacle. Both steps are exact Euclidean distance transforms.
-  const double radii[2] = {footprint_.inscribed_radius, footprint_.circumscribed_radius};
+  // A round robot's inscribed and circumscribed radii are both its radius (the polygon that
+  // approximates the circle is only for the footprint cells).
+  const bool round = config_.footprint.empty();
+  const double radii[2] = {round ? config_.robot_radius : footprint_.inscribed_radius,
+                           round ? config_.robot_radius : footprint_.circumscribed_radius};
   for (int k = 0; k < 2; ++k) {
+    if (k == 1 && radii[1] == radii[0]) {
+      opened_[1] = opened_[0];
+      break;
+    }
     const double r = radii[k] / map_->resolution;
     std::vector<std::uint8_t>& out = opened_[k];
     out.assign(static_cast<std::size_t>(w) * h, 0);
@@ -194,7 +205,7 @@ void LatticeGraph::computeAnchorScales() {
   // change, |theta - theta_goal|, obeys the triangle inequality on the circle. Adding
   // b x |theta - theta_goal| keeps either anchor consistent if b x dtheta <= base - s |d| (resp.
   // base - k w) for every action: the cost of an edge then covers both terms' decrease.
-  const std::vector<GridMove> moves = gridMoves(16);
+  const std::vector<GridMove> moves = gridMoves(kAnchorConnectivity);
   const double inf = std::numeric_limits<double>::infinity();
   double euclid = inf, grid = inf;
   std::vector<double> walks(actions_.size(), 0.0);

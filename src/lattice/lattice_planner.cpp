@@ -1,6 +1,7 @@
 // LatticePlanner: the facade over the lattice graph, the per-goal heuristic cache and the search.
 #include "amha_planner/lattice/lattice_planner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,7 +22,8 @@ struct LatticePlanner::Impl {
   std::unique_ptr<HeuristicGridBuilder> builder;
 
   struct CacheEntry {
-    int x, y;
+    int x, y, heading;
+    bool inadmissible, backward;
     std::shared_future<std::shared_ptr<const GoalHeuristics>> grids;
   };
   std::mutex mutex;
@@ -29,35 +31,39 @@ struct LatticePlanner::Impl {
 
   /// The goal cell's grids: from the cache, or computed now (once, even if several threads ask
   /// at the same time). `computed_seconds` receives the time spent here computing them.
-  std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, double* computed_seconds) {
+  std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
+                                                     bool backward, double* computed_seconds) {
     *computed_seconds = 0.0;
     std::promise<std::shared_ptr<const GoalHeuristics>> promise;
     std::shared_future<std::shared_ptr<const GoalHeuristics>> future;
     {
       std::lock_guard<std::mutex> lock(mutex);
       for (auto it = cache.begin(); it != cache.end(); ++it) {
-        if (it->x == x && it->y == y) {
+        if (it->x == x && it->y == y && it->heading == heading && it->inadmissible == inadmissible &&
+            it->backward == backward) {
           cache.splice(cache.begin(), cache, it);
           future = it->grids;
           break;
         }
       }
       if (!future.valid()) {
-        cache.push_front(CacheEntry{x, y, promise.get_future().share()});
+        cache.push_front(CacheEntry{x, y, heading, inadmissible, backward, promise.get_future().share()});
         while (cache.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) cache.pop_back();
       }
     }
     if (future.valid()) return future.get();
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      auto grids = builder->compute(x, y);
+      auto grids = builder->compute(x, y, heading, inadmissible, 0, backward);
       promise.set_value(grids);
       *computed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       return grids;
     } catch (...) {
       promise.set_exception(std::current_exception());
       std::lock_guard<std::mutex> lock(mutex);
-      cache.remove_if([&](const CacheEntry& e) { return e.x == x && e.y == y; });
+      cache.remove_if([&](const CacheEntry& e) {
+        return e.x == x && e.y == y && e.heading == heading && e.inadmissible == inadmissible && e.backward == backward;
+      });
       throw;
     }
   }
@@ -145,20 +151,30 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   g.poseToState(goal, &t.x, &t.y, &t.heading);
-  auto grids = impl_->heuristicsFor(t.x, t.y, &result.heuristic_seconds);
-  LatticeProblem problem(g, grids, s, t, g.config().num_inadmissible);
+  // Algorithms that read only the anchor do not need the inadmissible grids.
+  const bool uses_inadmissible = (algorithm.algorithm == Algorithm::kAmhaStar || algorithm.algorithm == Algorithm::kMhaStar) &&
+                                 algorithm.max_inadmissible > 0 && g.config().num_inadmissible > 0;
+  // Backward search runs from the goal to the start, with heuristics measured from the start.
+  const bool backward = g.config().backward_search;
+  const LatticeState from = backward ? t : s, to = backward ? s : t;
+  auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, &result.heuristic_seconds);
+  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward);
   SearchLimits remaining = limits;
   remaining.time_limit_s = std::max(0.0, limits.time_limit_s - result.heuristic_seconds);
   const double offset = result.heuristic_seconds;
   SolutionCallback cb = [&](const Solution& sol) {
     LatticeSolution ls;
     ls.search = sol;
-    ls.poses = impl_->posesOf(problem, sol.path);
+    if (backward) std::reverse(ls.search.path.begin(), ls.search.path.end());  // start ... goal
+    ls.poses = impl_->posesOf(problem, ls.search.path);
     ls.elapsed_total_s = sol.elapsed_s + offset;
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
   };
   result.search = planner->search(problem, remaining, cb);
+  if (backward) {
+    for (Solution& sol : result.search.solutions) std::reverse(sol.path.begin(), sol.path.end());
+  }
   return result;
 }
 

@@ -8,14 +8,16 @@ namespace amha {
 namespace lattice {
 
 LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
-                               LatticeState start, LatticeState goal, int num_inadmissible)
+                               LatticeState start, LatticeState goal, int num_inadmissible, bool backward)
     : graph_(graph),
       heur_(std::move(heuristics)),
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
+      backward_(backward),
       width_(graph.width()),
       headings_(graph.numHeadings()) {
   if (graph.numHeadings() > 0xFFFF) throw LatticeError(LatticeError::Kind::kConfig, "too many headings");
   for (int k = 0; k < kNumGridKinds; ++k) grids_[k] = heur_ && heur_->grids[k] ? heur_->grids[k].get() : nullptr;
+  if (heur_ && heur_->coarse_lattice != nullptr && !heur_->coarse.empty()) coarse_ = heur_->coarse.data();
   for (int k = 1; k <= num_inadmissible_; ++k) {
     if (grids_[k] == nullptr) num_inadmissible_ = k - 1;  // the planner did not build that grid
   }
@@ -61,6 +63,15 @@ StateId LatticeProblem::id(int x, int y, int heading) {
 void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   out.clear();
   const LatticeState st = state(s);
+  if (backward_) {
+    for (const LatticeAction* a : graph_.actionsInto(st.heading)) {
+      const int x = st.x - a->dx, y = st.y - a->dy;
+      const Cost c = graph_.edgeCost(x, y, *a);  // checks that (x, y) and the motion are in the map
+      if (c == kInvalidEdge) continue;
+      out.push_back(Edge{id(x, y, a->start_heading), c});
+    }
+    return;
+  }
   for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading); ++a) {
     const Cost c = graph_.edgeCost(st.x, st.y, *a);
     if (c == kInvalidEdge) continue;
@@ -92,7 +103,13 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading) const {
   if (g == kUnreachable) return kInfiniteHeuristic;  // provably cannot reach the goal
   const double a = std::floor(euclid + turn_euclid_[heading]);
   const double b = std::floor((g + turn_grid_[heading]) / kGridFraction);
-  return static_cast<HeuristicValue>(std::min(std::max(a, b), 4e9));
+  double c = 0.0;
+  if (coarse_ != nullptr) {
+    const std::uint32_t v = coarse_[heur_->coarse_lattice->index(x, y, heading)];
+    if (v == kUnreachable) return kInfiniteHeuristic;  // the abstraction proves it unreachable
+    c = v;
+  }
+  return static_cast<HeuristicValue>(std::min(std::max({a, b, c}), 4e9));
 }
 
 void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {
@@ -100,7 +117,8 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
   h[0] = anchor(st.x, st.y, st.heading);
   for (std::size_t i = 1; i < count; ++i) {
     const std::uint32_t g = grids_[i]->at(st.x, st.y);
-    h[i] = g == kUnreachable ? kInfiniteHeuristic : g / kGridFraction;
+    h[i] = g == kUnreachable ? kInfiniteHeuristic
+                             : static_cast<HeuristicValue>(std::min(g * heur_->scale[i] / kGridFraction, 4e9));
   }
 }
 

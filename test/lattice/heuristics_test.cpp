@@ -109,10 +109,13 @@ LatticeFixture makeFixture(std::shared_ptr<GridMap> map, const LatticeConfig& c)
   return f;
 }
 
-// h0(p) <= cost(p, q) + h0(q) for every valid edge out of many random valid states.
-void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, int samples, unsigned seed) {
-  auto heur = f.builder->compute(goal.x, goal.y);
-  LatticeProblem p(*f.graph, heur, goal, goal, 3);
+// h0(p) <= cost(p, q) + h0(q) for every valid edge p -> q out of many random valid states, and
+// for backward search (tables measuring the distance from `goal`, used as the search's target)
+// h0(q) <= cost(p, q) + h0(p).
+void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, int samples, unsigned seed,
+                                   bool backward = false) {
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading, true, 0, backward);
+  LatticeProblem p(*f.graph, heur, goal, goal, 3, backward);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> rx(0, f.map->width - 1), ry(0, f.map->height - 1), rh(0, f.graph->numHeadings() - 1);
   int edges = 0;
@@ -120,11 +123,12 @@ void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, i
   for (int k = 0; k < samples; ++k) {
     const int x = rx(rng), y = ry(rng), h = rh(rng);
     if (!f.graph->stateValid(x, y, h)) continue;
-    const HeuristicValue hp = p.anchor(x, y, h);
     for (const LatticeAction* a = f.graph->actionsBegin(h); a != f.graph->actionsEnd(h); ++a) {
       const Cost c = f.graph->edgeCost(x, y, *a);
       if (c == kInvalidEdge) continue;
-      const HeuristicValue hq = p.anchor(x + a->dx, y + a->dy, a->end_heading);
+      HeuristicValue hp = p.anchor(x, y, h);
+      HeuristicValue hq = p.anchor(x + a->dx, y + a->dy, a->end_heading);
+      if (backward) std::swap(hp, hq);  // the search moves from q to p
       ++edges;
       if (hq == kInfiniteHeuristic) {
         ASSERT_EQ(hp, kInfiniteHeuristic) << "a state that reaches a dead end must be a dead end";
@@ -132,7 +136,8 @@ void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, i
       }
       ASSERT_NE(hp, kInfiniteHeuristic) << "infinite h at (" << x << "," << y << "," << h << ") with a finite successor";
       ASSERT_LE(static_cast<Cost>(hp), c + static_cast<Cost>(hq))
-          << "(" << x << "," << y << "," << h << ") -> (" << x + a->dx << "," << y + a->dy << "," << a->end_heading << ")";
+          << "(" << x << "," << y << "," << h << ") -> (" << x + a->dx << "," << y + a->dy << "," << a->end_heading
+          << ") backward " << backward;
     }
   }
   EXPECT_GT(edges, samples / 4);
@@ -153,6 +158,7 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfGeneratedLattices) {
       LatticeFixture f = makeFixture(map, c);
       LatticeState goal{60, 45, 3};
       checkConsistencyOnRandomEdges(f, goal, 4000, seed);
+      checkConsistencyOnRandomEdges(f, goal, 4000, seed, true);
     }
   }
 }
@@ -168,6 +174,7 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
   c.time_to_turn_45 = env.time_to_turn_45;
   LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);
   checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
+  checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);
 }
 
 // Exhaustive cost-to-go on a small lattice (reverse Dijkstra over all edges): h0 never exceeds it.
@@ -210,7 +217,7 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
       }
     }
   }
-  auto heur = f.builder->compute(goal.x, goal.y);
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
   LatticeProblem p(*f.graph, heur, goal, goal, 3);
   int reachable = 0, tight = 0;
   double ratio_sum = 0.0;
@@ -236,7 +243,7 @@ TEST(HeuristicGridTest, GoalsCachedAndGridsShared) {
   LatticeConfig c;
   c.robot_radius = 0.0;
   LatticeFixture f = makeFixture(map, c);
-  auto h = f.builder->compute(10, 10);
+  auto h = f.builder->compute(10, 10, 0);
   ASSERT_TRUE(h->grids[1] && h->grids[2] && h->grids[3]);
   EXPECT_EQ(h->grids[1], h->grids[2]);  // identical levels: computed once
   EXPECT_EQ(h->grids[2], h->grids[3]);

@@ -1,6 +1,7 @@
 // LatticePlanner end to end: query errors, A* against an exhaustive Dijkstra over the lattice,
 // every solution of every algorithm checked by the independent path validator, anytime bounds,
 // the heuristic cache and concurrent plan() calls.
+#include <algorithm>
 #include <cmath>
 #include <queue>
 #include <random>
@@ -143,8 +144,10 @@ constexpr Cost kUnknownOptimum = -1;  // a solution is expected, its optimal cos
 // Runs `config` on the query and checks every reported solution with the validator, and, if the
 // optimum is known, that cost <= certified_bound x optimum.
 void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, LatticeState s, LatticeState t,
-                    const PlannerConfig& config, Cost optimal, double time_limit) {
-  LatticeProblem p(g, b.compute(t.x, t.y, 1), s, t, 3);
+                    const PlannerConfig& config, Cost optimal, double time_limit, bool backward = false) {
+  // Backward search runs from t to s over reversed edges, with tables measured from s.
+  const LatticeState from = backward ? t : s, to = backward ? s : t;
+  LatticeProblem p(g, b.compute(to.x, to.y, to.heading, true, 1, backward), from, to, 3, backward);
   auto planner = makePlanner(config);
   SearchLimits limits;
   limits.time_limit_s = time_limit;
@@ -152,7 +155,9 @@ void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, Lattic
   int count = 0;
   const SearchResult r = planner->search(p, limits, [&](const Solution& sol) {
     ++count;
-    const std::string err = test::validatePath(model, statesOf(p, sol.path), sol.cost);
+    std::vector<LatticeState> states = statesOf(p, sol.path);
+    if (backward) std::reverse(states.begin(), states.end());
+    const std::string err = test::validatePath(model, states, sol.cost);
     ASSERT_EQ(err, "") << algorithmName(config.algorithm) << " solution " << count;
     ASSERT_EQ(sol.path.front(), p.start());
     ASSERT_EQ(sol.path.back(), p.goal());
@@ -184,11 +189,11 @@ TEST(LatticeSearchTest, AStarEqualsExhaustiveDijkstraAndEveryPathValidates) {
     for (int q = 0; q < 3; ++q) {
       LatticeState s, t;
       ASSERT_TRUE(randomQuery(g, rng, &s, &t));
-      LatticeProblem ref(g, b.compute(t.x, t.y, 1), s, t, 3);
+      LatticeProblem ref(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
       const Cost optimal = exhaustiveDijkstra(ref);
       solved += optimal != kInfiniteCost;
       {
-        LatticeProblem p(g, b.compute(t.x, t.y, 1), s, t, 3);
+        LatticeProblem p(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
         const SearchResult r = makePlanner(defaultConfig(Algorithm::kAStar))->search(p, SearchLimits());
         if (optimal == kInfiniteCost) {
           EXPECT_EQ(r.status, SearchStatus::kNoSolution);
@@ -201,6 +206,7 @@ TEST(LatticeSearchTest, AStarEqualsExhaustiveDijkstraAndEveryPathValidates) {
         PlannerConfig pc = defaultConfig(a);
         pc.check_invariants = seed == 1;
         runAndValidate(g, b, s, t, pc, optimal, 20.0);
+        if (seed % 2 == 1) runAndValidate(g, b, s, t, pc, optimal, 20.0, true);
       }
     }
   }
@@ -215,9 +221,48 @@ TEST(LatticeSearchTest, AmhaWithinCertifiedBoundOnLargerMaps) {
     std::mt19937 rng(seed);
     LatticeState s, t;
     ASSERT_TRUE(randomQuery(g, rng, &s, &t));
-    LatticeProblem ref(g, b.compute(t.x, t.y, 1), s, t, 3);
+    LatticeProblem ref(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
     const Cost optimal = exhaustiveDijkstra(ref);
     runAndValidate(g, b, s, t, defaultConfig(Algorithm::kAmhaStar), optimal, 30.0);
+  }
+}
+
+TEST(LatticePlannerTest, BackwardSearchFindsTheSameOptimum) {
+  for (unsigned seed : {41u, 42u, 43u}) {
+    Scenario sc = scenario(seed, 40);
+    LatticeGraph g(sc.map, sc.config);
+    LatticeConfig back = sc.config;
+    back.backward_search = true;
+    LatticePlanner forward_planner(sc.map, sc.config), backward_planner(sc.map, back);
+    HeuristicGridBuilder b(g);
+    std::mt19937 rng(seed);
+    LatticeState s, t;
+    ASSERT_TRUE(randomQuery(g, rng, &s, &t));
+    LatticeProblem ref(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
+    const Cost optimal = exhaustiveDijkstra(ref);
+    const Pose2D ps = g.stateToPose(s.x, s.y, s.heading), pt = g.stateToPose(t.x, t.y, t.heading);
+    const PlanResult f = forward_planner.plan(ps, pt, defaultConfig(Algorithm::kAStar), SearchLimits());
+    for (Algorithm a : {Algorithm::kAStar, Algorithm::kAmhaStar, Algorithm::kAraStar}) {
+      const PlanResult r = backward_planner.plan(ps, pt, defaultConfig(a), SearchLimits());
+      if (optimal == kInfiniteCost) {
+        EXPECT_TRUE(r.solutions.empty());
+        continue;
+      }
+      ASSERT_FALSE(r.solutions.empty());
+      const LatticeSolution& last = r.solutions.back();
+      if (a == Algorithm::kAStar) {
+        EXPECT_EQ(last.search.cost, optimal);
+        EXPECT_EQ(f.solutions.back().search.cost, optimal);
+      }
+      for (const LatticeSolution& sol : r.solutions) {
+        EXPECT_LE(static_cast<double>(sol.search.cost), sol.search.certified_bound * optimal * (1 + 1e-12));
+        // Poses run from the start to the goal.
+        EXPECT_NEAR(sol.poses.front().x, ps.x, 1e-9);
+        EXPECT_NEAR(sol.poses.front().y, ps.y, 1e-9);
+        EXPECT_NEAR(sol.poses.back().x, pt.x, 1e-6);
+        EXPECT_NEAR(sol.poses.back().y, pt.y, 1e-6);
+      }
+    }
   }
 }
 

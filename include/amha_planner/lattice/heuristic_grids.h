@@ -1,5 +1,5 @@
 // 2-D Dijkstra grids from the goal, the heuristics of the lattice search:
-//  - the anchor's grid: a 16-connected, cost-aware Dijkstra over the cells the robot's centre
+//  - the anchor's grid: an 8-connected, cost-aware Dijkstra over the cells the robot's centre
 //    may occupy, with step costs scaled so that it is a relaxation of the lattice (admissible
 //    and consistent, see LatticeGraph::gridAnchorUnitsPerCell);
 //  - the inadmissible ones (the paper's): an 8-connected Dijkstra for a point robot, and the
@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "amha_planner/lattice/coarse_lattice.h"
 #include "amha_planner/lattice/footprint.h"
 #include "amha_planner/search/types.h"
 
@@ -31,6 +32,9 @@ struct GridMove {
 
 /// The 8 neighbours (connectivity 8) or the 8 neighbours and the 8 knight moves (16).
 std::vector<GridMove> gridMoves(int connectivity);
+
+/// Connectivity of the anchor's grid.
+constexpr int kAnchorConnectivity = 8;
 
 /// Shortest walk (in cells of length) from (0, 0) to `to` using `moves` whose required cells
 /// all lie in `cells`; infinity if there is none.
@@ -53,10 +57,15 @@ struct DistanceGrid {
 enum class GridKind { kAnchor = 0, kPointRobot = 1, kInscribedOpening = 2, kCircumscribedOpening = 3 };
 constexpr int kNumGridKinds = 4;
 
-/// The grids for one goal cell.
+/// The grids for one goal.
 struct GoalHeuristics {
-  int goal_x = 0, goal_y = 0;
+  int goal_x = 0, goal_y = 0, goal_heading = 0;
   std::shared_ptr<const DistanceGrid> grids[kNumGridKinds];  ///< null if not needed
+  /// Multiplier of each grid's values (1 unless the grid is another kind's, rescaled).
+  double scale[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};
+  /// Cost-to-go on the block abstraction (indexed by coarse_lattice->index), or empty.
+  std::vector<std::uint32_t> coarse;
+  const CoarseLattice* coarse_lattice = nullptr;
   double seconds = 0.0;  ///< wall time to compute them
   std::size_t bytes() const;
 };
@@ -65,9 +74,11 @@ struct GoalHeuristics {
 class HeuristicGridBuilder {
  public:
   explicit HeuristicGridBuilder(const LatticeGraph& graph);
-  /// Computes the grids the configuration asks for, in parallel (up to `threads`, 0 = all
-  /// hardware threads).
-  std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, unsigned threads = 0) const;
+  /// Computes the anchor's tables and, if `inadmissible`, the inadmissible grids the
+  /// configuration asks for, in parallel (up to `threads`, 0 = all hardware threads).
+  /// `backward`: the tables are for a backward search, i.e. distances from (x, y, heading).
+  std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading, bool inadmissible = true,
+                                                unsigned threads = 0, bool backward = false) const;
   /// One grid alone (for tests and timing).
   DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
   bool needed(GridKind kind) const { return needed_[static_cast<int>(kind)]; }
@@ -79,17 +90,24 @@ class HeuristicGridBuilder {
     std::vector<std::int64_t> required;  // per move: kMaxRequired offsets (the two ends excluded)
     std::vector<int> required_count;
     std::vector<std::uint32_t> step;     // per move, 256 cost classes
+    std::uint32_t max_step = 0;
   };
   static constexpr int kMaxRequired = 4;
   void buildKind(int k, int connectivity, double units_per_cell, const std::vector<std::uint8_t>* mask,
                  std::uint8_t max_cost_class);
   void run(const Kind& kind, int goal_x, int goal_y, std::uint32_t* dist) const;
+  template <class Queue>
+  void dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const;
+  template <class Queue>
+  void dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const;
 
   const LatticeGraph& graph_;
+  std::unique_ptr<CoarseLattice> coarse_;
   int width_ = 0, height_ = 0;
   Kind kinds_[kNumGridKinds];
   bool needed_[kNumGridKinds] = {false, false, false, false};
   int alias_[kNumGridKinds] = {0, 1, 2, 3};  // a kind computed as another (identical) kind
+  double scale_[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};  // ... times this factor
 };
 
 }  // namespace lattice

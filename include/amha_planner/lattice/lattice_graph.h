@@ -17,6 +17,7 @@ namespace lattice {
 /// A primitive ready for the search.
 struct LatticeAction {
   int dx = 0, dy = 0;      ///< end cell relative to the start cell
+  int start_heading = 0;
   int end_heading = 0;
   int primitive = 0;       ///< index into PrimitiveSet::primitives
   Cost base_cost = 1;      ///< cost on free cells (see LatticeConfig::cost_penalty)
@@ -49,6 +50,8 @@ class LatticeGraph {
   const LatticeAction* actionsBegin(int heading) const { return actions_.data() + action_index_[heading]; }
   const LatticeAction* actionsEnd(int heading) const { return actions_.data() + action_index_[heading + 1]; }
   const std::vector<LatticeAction>& actions() const { return actions_; }
+  /// Actions ending in `heading` (for backward search).
+  const std::vector<const LatticeAction*>& actionsInto(int heading) const { return actions_into_[heading]; }
   const std::vector<std::int64_t>& offsets() const { return offsets_; }
   /// Cell offsets (not linearised) of an action's centre and swept cells, for tools and tests.
   const PrimitiveCells& actionCells(std::size_t action) const { return action_cells_[action]; }
@@ -118,6 +121,7 @@ class LatticeGraph {
   RobotFootprint footprint_;
   std::vector<LatticeAction> actions_;
   std::vector<std::size_t> action_index_;  // numHeadings() + 1 entries
+  std::vector<std::vector<const LatticeAction*>> actions_into_;
   std::vector<PrimitiveCells> action_cells_;
   std::vector<std::int64_t> offsets_;
   std::vector<std::vector<CellOffset>> rest_cells_;  // footprint at rest, per heading

@@ -93,10 +93,19 @@ struct LatticeConfig {
   /// through the turning-time term of the edge cost above.
   double nominal_speed = 0.4;
   double time_to_turn_45 = 0.6;
-  /// Anchor heuristic: true = max(Euclidean, an admissible cost-aware 16-connected grid
+  /// Anchor heuristic: true = max(Euclidean, an admissible cost-aware 8-connected grid
   /// Dijkstra whose step costs are scaled so it is a relaxation of the lattice); false = the
   /// Euclidean distance alone (the paper's anchor). Both are admissible and consistent.
   bool grid_anchor = true;
+  /// With grid_anchor: also take the exact cost-to-go on a block abstraction of the lattice
+  /// (cells grouped into coarse_block x coarse_block blocks; 0 = automatic: at most ~250k
+  /// abstract states, see coarse_lattice.h), which knows what turning costs. Admissible and
+  /// consistent.
+  bool coarse_anchor = true;
+  int coarse_block = 0;
+  /// Search from the goal back to the start (as SBPL does by default). The heuristics are
+  /// then computed from the start, so the cache helps only repeated queries from one start.
+  bool backward_search = false;
   /// Goals whose heuristic grids are kept (each costs ~16 bytes per map cell).
   int heuristic_cache_size = 2;
 };

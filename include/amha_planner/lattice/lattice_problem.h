@@ -23,8 +23,12 @@ struct LatticeState {
 class LatticeProblem final : public SearchProblem {
  public:
   /// `heuristics` must be for the goal's cell. num_inadmissible: 0..3 grids after the anchor.
+  /// backward: the search runs from `start` to `goal` over reversed edges, i.e. the caller
+  /// passes the lattice goal as `start` and the lattice start as `goal`; successors() then
+  /// returns predecessors with the cost of the forward edge, and the heuristics (computed with
+  /// forward distances from the lattice start) estimate the cost from the lattice start.
   LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
-                 LatticeState start, LatticeState goal, int num_inadmissible);
+                 LatticeState start, LatticeState goal, int num_inadmissible, bool backward = false);
   ~LatticeProblem() override;
 
   StateId start() const override { return start_; }
@@ -53,7 +57,9 @@ class LatticeProblem final : public SearchProblem {
   const LatticeGraph& graph_;
   std::shared_ptr<const GoalHeuristics> heur_;
   const DistanceGrid* grids_[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
+  const std::uint32_t* coarse_ = nullptr;
   int num_inadmissible_;
+  bool backward_ = false;
   int width_, headings_;
   int tiles_x_;
   std::size_t page_entries_;

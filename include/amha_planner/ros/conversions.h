@@ -1,0 +1,64 @@
+// Message <-> library conversions for the ROS layer: occupancy grids to GridMaps, poses to
+// Pose2D and back, lattice solutions to nav_msgs/Path and PlanSolution, footprint markers.
+// No planning logic here.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Quaternion.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Path.h>
+#include <ros/time.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "amha_planner/PlanSolution.h"
+#include "amha_planner/lattice/lattice_planner.h"
+
+namespace amha_planner {
+
+/// Builds a GridMap from an OccupancyGrid message (the origin's yaw included). Throws
+/// amha::lattice::LatticeError naming the problem (data length != width * height, resolution
+/// not positive/finite, non-finite or non-planar origin, more than max_cells cells).
+amha::lattice::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
+                                            const amha::lattice::OccupancyConversion& conversion,
+                                            std::size_t max_cells);
+
+/// Checks that a pose can be used as a planar pose: finite position, finite quaternion whose
+/// norm is within 1e-3 of 1 (so zero and non-normalised quaternions are refused). On failure
+/// returns false and says why in *why.
+bool checkPose(const geometry_msgs::Pose& pose, std::string* why);
+
+/// The planar pose (x, y, yaw) of a pose that passed checkPose (roll and pitch are dropped).
+amha::lattice::Pose2D pose2DFromPose(const geometry_msgs::Pose& pose);
+
+geometry_msgs::Quaternion quaternionFromYaw(double yaw);
+
+/// A path message (frame, stamp) through the given map-frame poses.
+nav_msgs::Path pathFromPoses(const std::vector<amha::lattice::Pose2D>& poses,
+                             const std::string& frame, const ros::Time& stamp);
+
+/// The message for one improved solution; costs are converted to metres-equivalent.
+PlanSolution planSolutionMsg(const amha::lattice::LatticeSolution& solution,
+                             std::uint32_t request_id, const std::string& frame,
+                             const ros::Time& stamp);
+
+/// Search cost units -> metres-equivalent.
+inline double costInMetres(amha::Cost cost) {
+  return static_cast<double>(cost) / amha::lattice::kCostUnitsPerMetre;
+}
+
+/// Markers for rviz: the footprint outline every `spacing` metres along `poses` (and at the
+/// last pose), the start and goal as arrows with their footprints. The first marker deletes
+/// the previous set, so the array always shows the latest path only.
+visualization_msgs::MarkerArray footprintMarkers(const amha::lattice::LatticePlanner& planner,
+                                                 const std::vector<amha::lattice::Pose2D>& poses,
+                                                 const amha::lattice::Pose2D& start,
+                                                 const amha::lattice::Pose2D& goal,
+                                                 const std::string& frame, const ros::Time& stamp,
+                                                 double spacing);
+
+}  // namespace amha_planner

@@ -1,0 +1,49 @@
+// The planning server's parameters (private ~ names, see config/planner.yaml and docs/ros.md)
+// and how a request's optional overrides combine with them.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <ros/node_handle.h>
+
+#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/search/planner.h"
+
+namespace amha_planner {
+
+struct PlannerParams {
+  amha::lattice::LatticeConfig lattice;            ///< robot and motion model
+  amha::lattice::OccupancyConversion occupancy;    ///< how the map's cells become costs
+  std::size_t max_map_cells = std::size_t{1} << 24;  ///< bigger maps are refused
+
+  amha::Algorithm algorithm = amha::Algorithm::kAmhaStar;
+  /// Per-algorithm weights: A-MHA*/MHA* use w1, w2, dw1, dw2; ARA* uses eps and
+  /// eps_decrement; weighted A* uses eps. A value < 0 means "the algorithm's preset".
+  double w1 = -1, w2 = -1, dw1 = -1, dw2 = -1, eps = -1, eps_decrement = -1;
+
+  double default_time_budget = 5.0;   ///< seconds, when a request gives 0
+  double max_memory_mb = 2048.0;      ///< search + lattice state memory cap per request
+
+  std::string global_frame = "map";
+  std::string robot_base_frame = "base_link";
+  double tf_timeout = 0.5;            ///< seconds to wait for a transform
+
+  int max_queued_requests = 2;        ///< requests that may wait while one plans; more: BUSY
+  double marker_spacing = 0.5;        ///< metres between footprint markers along the path
+};
+
+/// Reads the parameters under `pnh` (a private node handle). Throws std::invalid_argument
+/// naming the parameter and the problem for a value of the wrong type or range.
+PlannerParams loadPlannerParams(const ros::NodeHandle& pnh);
+
+/// The search configuration for a request: `algorithm_name` "" keeps the configured algorithm;
+/// w1/w2 of 0 keep the configured weights (for ara and wastar, w1 is epsilon and w2 is unused).
+/// Returns false with a message for an unknown name or weights that are not finite and >= 1.
+bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_name, double w1,
+                     double w2, amha::PlannerConfig* out, std::string* error);
+
+/// Strips a leading '/' (tf2 frame ids have none).
+std::string normaliseFrame(const std::string& frame);
+
+}  // namespace amha_planner

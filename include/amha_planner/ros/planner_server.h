@@ -1,0 +1,109 @@
+// The planning server behind both amha_planner/PlannerNodelet and planner_node: it keeps the
+// latest valid map's LatticePlanner, answers ~plan, ~make_plan and ~plan_anytime by driving it,
+// and streams every improved solution. Threads:
+//  - the map subscription has its own callback queue and thread, so a slow plan never delays a
+//    new map (building the new planner happens there too; plans keep the planner they started on);
+//  - the services have their own queue, served by max_queued_requests + 2 threads, each waiting
+//    for its job's result;
+//  - the action server's goal and cancel callbacks have their own queue and thread, so a cancel
+//    reaches a running search at once;
+//  - one worker thread (PlanQueue) runs the searches, one at a time.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+
+#include <actionlib/server/action_server.h>
+#include <nav_msgs/GetPlan.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <ros/spinner.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "amha_planner/Plan.h"
+#include "amha_planner/PlanAnytimeAction.h"
+#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/ros/plan_queue.h"
+#include "amha_planner/ros/planner_params.h"
+
+namespace amha_planner {
+
+class PlannerServer {
+ public:
+  /// `nh` resolves the map topic; `pnh` (private) holds the parameters, services, action and
+  /// published topics. Throws std::invalid_argument for bad parameters.
+  PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+  ~PlannerServer();
+  PlannerServer(const PlannerServer&) = delete;
+  PlannerServer& operator=(const PlannerServer&) = delete;
+
+ private:
+  using ActionServer = actionlib::ActionServer<PlanAnytimeAction>;
+  using GoalHandle = ActionServer::GoalHandle;
+  /// Called with each improved solution's message while a request runs.
+  using SolutionSink = std::function<void(const PlanSolution&)>;
+
+  /// One request, whichever interface it came through.
+  struct Request {
+    geometry_msgs::PoseStamped start, goal;
+    double time_budget = 0.0;
+    std::string algorithm;
+    double w1 = 0.0, w2 = 0.0;
+  };
+
+  void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
+  bool onPlan(Plan::Request& req, Plan::Response& res);
+  bool onMakePlan(nav_msgs::GetPlan::Request& req, nav_msgs::GetPlan::Response& res);
+  void onGoal(GoalHandle goal);
+  void onCancel(GoalHandle goal);
+
+  /// Queues `request` and waits for its response (BUSY when the queue is full).
+  Plan::Response runBlocking(const Request& request);
+  /// Plans one request on the worker thread; `cancel` stops it.
+  Plan::Response execute(const Request& request, std::uint32_t id,
+                         const std::atomic<bool>& cancel, const SolutionSink& sink);
+  /// Resolves a request pose into the global frame (tf2); false with status and message set.
+  bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
+                     geometry_msgs::PoseStamped* out, Plan::Response* res);
+
+  std::shared_ptr<amha::lattice::LatticePlanner> currentPlanner() const;
+  std::shared_ptr<std::atomic<bool>> newCancelFlag();
+  void releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& flag);
+
+  ros::NodeHandle nh_, pnh_;
+  PlannerParams params_;
+
+  ros::CallbackQueue map_queue_, service_queue_, action_queue_;
+  std::unique_ptr<ros::AsyncSpinner> map_spinner_, service_spinner_, action_spinner_;
+  ros::Subscriber map_sub_;
+  ros::ServiceServer plan_srv_, make_plan_srv_;
+  ros::Publisher solutions_pub_, path_pub_, markers_pub_;
+  std::unique_ptr<ActionServer> action_server_;
+
+  tf2_ros::Buffer tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+
+  mutable std::mutex planner_mutex_;
+  std::shared_ptr<amha::lattice::LatticePlanner> planner_;  ///< latest valid map's planner
+  std::uint64_t maps_accepted_ = 0;
+
+  std::atomic<std::uint32_t> next_request_id_{1};
+  std::atomic<bool> shutting_down_{false};
+  std::mutex flags_mutex_;
+  std::set<std::shared_ptr<std::atomic<bool>>> cancel_flags_;  ///< of queued/running requests
+
+  std::mutex goals_mutex_;  ///< also orders setAccepted before the job's first step
+  std::map<std::string, std::shared_ptr<std::atomic<bool>>> goal_cancel_flags_;
+
+  std::unique_ptr<PlanQueue> queue_;  ///< last member: destroyed (joined) first
+};
+
+}  // namespace amha_planner

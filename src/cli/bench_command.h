@@ -1,0 +1,27 @@
+// `amha bench <what>`: benchmarks register themselves here, one file each (bench_*.cpp).
+#pragma once
+
+#include <vector>
+
+namespace amha {
+namespace cli {
+
+struct Benchmark {
+  const char* name;
+  const char* summary;
+  int (*run)(int argc, char** argv);  // argv[0] is "amha bench <name>"
+};
+
+std::vector<Benchmark>& benchmarkRegistry();
+
+struct BenchmarkRegistrar {
+  BenchmarkRegistrar(const char* name, const char* summary, int (*run)(int, char**)) {
+    benchmarkRegistry().push_back(Benchmark{name, summary, run});
+  }
+};
+
+}  // namespace cli
+}  // namespace amha
+
+#define AMHA_REGISTER_BENCHMARK(name, summary, fn) \
+  static const ::amha::cli::BenchmarkRegistrar amha_benchmark_registrar_##fn(name, summary, fn)

@@ -1,0 +1,206 @@
+// Message <-> library conversions (see conversions.h).
+#include "amha_planner/ros/conversions.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <tf2/LinearMath/Quaternion.h>
+#include <tf2/utils.h>
+
+namespace amha_planner {
+
+namespace lat = amha::lattice;
+
+lat::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
+                                  const lat::OccupancyConversion& conversion,
+                                  std::size_t max_cells) {
+  const geometry_msgs::Pose& o = msg.info.origin;
+  std::string why;
+  if (!checkPose(o, &why)) {
+    throw lat::LatticeError(lat::LatticeError::Kind::kMap, "map origin: " + why);
+  }
+  // A grid tilted out of the plane cannot be planned on in (x, y, theta).
+  tf2::Quaternion q(o.orientation.x, o.orientation.y, o.orientation.z, o.orientation.w);
+  double roll = 0, pitch = 0, yaw = 0;
+  tf2::Matrix3x3(q.normalized()).getRPY(roll, pitch, yaw);
+  if (std::abs(roll) > 1e-3 || std::abs(pitch) > 1e-3) {
+    throw lat::LatticeError(lat::LatticeError::Kind::kMap,
+                            "map origin is not planar (roll/pitch not zero)");
+  }
+  // The library checks sizes against the data length before reading it.
+  if (msg.info.width > static_cast<std::uint32_t>(std::numeric_limits<int>::max()) ||
+      msg.info.height > static_cast<std::uint32_t>(std::numeric_limits<int>::max())) {
+    std::ostringstream s;
+    s << "map size " << msg.info.width << " x " << msg.info.height << " is too large";
+    throw lat::LatticeError(lat::LatticeError::Kind::kMap, s.str());
+  }
+  return lat::gridMapFromOccupancy(static_cast<int>(msg.info.width),
+                                   static_cast<int>(msg.info.height), msg.info.resolution,
+                                   o.position.x, o.position.y, yaw, msg.data.data(),
+                                   msg.data.size(), conversion, max_cells);
+}
+
+bool checkPose(const geometry_msgs::Pose& pose, std::string* why) {
+  const auto& p = pose.position;
+  const auto& q = pose.orientation;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    *why = "position is not finite";
+    return false;
+  }
+  if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.w)) {
+    *why = "orientation quaternion is not finite";
+    return false;
+  }
+  const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (std::abs(norm - 1.0) > 1e-3) {
+    std::ostringstream s;
+    s << "orientation quaternion is not normalised (norm " << norm << ")";
+    *why = s.str();
+    return false;
+  }
+  return true;
+}
+
+lat::Pose2D pose2DFromPose(const geometry_msgs::Pose& pose) {
+  const auto& q = pose.orientation;
+  lat::Pose2D out;
+  out.x = pose.position.x;
+  out.y = pose.position.y;
+  out.theta = tf2::getYaw(tf2::Quaternion(q.x, q.y, q.z, q.w));
+  return out;
+}
+
+geometry_msgs::Quaternion quaternionFromYaw(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(yaw / 2);
+  q.w = std::cos(yaw / 2);
+  return q;
+}
+
+nav_msgs::Path pathFromPoses(const std::vector<lat::Pose2D>& poses, const std::string& frame,
+                             const ros::Time& stamp) {
+  nav_msgs::Path path;
+  path.header.frame_id = frame;
+  path.header.stamp = stamp;
+  path.poses.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    auto& ps = path.poses[i];
+    ps.header = path.header;
+    ps.pose.position.x = poses[i].x;
+    ps.pose.position.y = poses[i].y;
+    ps.pose.orientation = quaternionFromYaw(poses[i].theta);
+  }
+  return path;
+}
+
+PlanSolution planSolutionMsg(const lat::LatticeSolution& solution, std::uint32_t request_id,
+                             const std::string& frame, const ros::Time& stamp) {
+  PlanSolution m;
+  m.request_id = request_id;
+  m.path = pathFromPoses(solution.poses, frame, stamp);
+  m.cost = costInMetres(solution.search.cost);
+  m.w1 = solution.search.w1;
+  m.w2 = solution.search.w2;
+  m.bound = solution.search.nominal_bound;
+  m.certified_bound = solution.search.certified_bound;
+  m.elapsed = solution.elapsed_total_s;  // heuristic grids for a new goal included
+  m.expansions = solution.search.expansions;
+  m.iteration = solution.search.iteration;
+  return m;
+}
+
+namespace {
+
+visualization_msgs::Marker baseMarker(const std::string& ns, int id, int type,
+                                      const std::string& frame, const ros::Time& stamp) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  return m;
+}
+
+void addOutline(const std::vector<std::array<double, 2>>& polygon,
+                visualization_msgs::Marker* lines) {
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const auto& a = polygon[i];
+    const auto& b = polygon[(i + 1) % polygon.size()];
+    geometry_msgs::Point pa, pb;
+    pa.x = a[0]; pa.y = a[1];
+    pb.x = b[0]; pb.y = b[1];
+    lines->points.push_back(pa);
+    lines->points.push_back(pb);
+  }
+}
+
+std_msgs::ColorRGBA color(float r, float g, float b, float a) {
+  std_msgs::ColorRGBA c;
+  c.r = r; c.g = g; c.b = b; c.a = a;
+  return c;
+}
+
+visualization_msgs::Marker poseArrow(const std::string& ns, const lat::Pose2D& p,
+                                     const std_msgs::ColorRGBA& c, const std::string& frame,
+                                     const ros::Time& stamp) {
+  auto m = baseMarker(ns, 0, visualization_msgs::Marker::ARROW, frame, stamp);
+  m.pose.position.x = p.x;
+  m.pose.position.y = p.y;
+  m.pose.position.z = 0.05;
+  m.pose.orientation = quaternionFromYaw(p.theta);
+  m.scale.x = 1.0; m.scale.y = 0.2; m.scale.z = 0.2;
+  m.color = c;
+  return m;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray footprintMarkers(const lat::LatticePlanner& planner,
+                                                 const std::vector<lat::Pose2D>& poses,
+                                                 const lat::Pose2D& start,
+                                                 const lat::Pose2D& goal,
+                                                 const std::string& frame, const ros::Time& stamp,
+                                                 double spacing) {
+  visualization_msgs::MarkerArray out;
+  auto clear = baseMarker("", 0, visualization_msgs::Marker::LINE_LIST, frame, stamp);
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  out.markers.push_back(clear);
+
+  auto along = baseMarker("footprints", 0, visualization_msgs::Marker::LINE_LIST, frame, stamp);
+  along.scale.x = 0.04;
+  along.color = color(1.0f, 0.55f, 0.0f, 0.9f);  // orange around the (blue) path
+  double travelled = 0.0, next = 0.0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (i > 0) travelled += std::hypot(poses[i].x - poses[i - 1].x, poses[i].y - poses[i - 1].y);
+    if (travelled >= next || i + 1 == poses.size()) {
+      addOutline(planner.footprintAt(poses[i]), &along);
+      next = travelled + spacing;
+    }
+  }
+  if (!along.points.empty()) out.markers.push_back(along);
+
+  const auto green = color(0.0f, 0.8f, 0.0f, 1.0f);
+  const auto red = color(0.9f, 0.0f, 0.0f, 1.0f);
+  out.markers.push_back(poseArrow("start", start, green, frame, stamp));
+  out.markers.push_back(poseArrow("goal", goal, red, frame, stamp));
+  auto start_fp = baseMarker("start_footprint", 0, visualization_msgs::Marker::LINE_LIST, frame,
+                             stamp);
+  start_fp.scale.x = 0.06;
+  start_fp.color = green;
+  addOutline(planner.footprintAt(start), &start_fp);
+  out.markers.push_back(start_fp);
+  auto goal_fp = start_fp;
+  goal_fp.ns = "goal_footprint";
+  goal_fp.points.clear();
+  goal_fp.color = red;
+  addOutline(planner.footprintAt(goal), &goal_fp);
+  out.markers.push_back(goal_fp);
+  return out;
+}
+
+}  // namespace amha_planner

@@ -1,0 +1,237 @@
+// Parameter loading and request overrides (see planner_params.h).
+#include "amha_planner/ros/planner_params.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <XmlRpcValue.h>
+
+namespace amha_planner {
+
+namespace {
+
+[[noreturn]] void bad(const ros::NodeHandle& pnh, const std::string& name,
+                      const std::string& problem) {
+  throw std::invalid_argument("parameter " + pnh.resolveName(name) + ": " + problem);
+}
+
+double toDouble(const XmlRpc::XmlRpcValue& v, bool* ok) {
+  *ok = true;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+  *ok = false;
+  return 0.0;
+}
+
+double getDouble(const ros::NodeHandle& pnh, const std::string& name, double fallback,
+                 double min, double max) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(name, v)) return fallback;
+  bool ok = false;
+  const double d = toDouble(v, &ok);
+  if (!ok) bad(pnh, name, "expected a number");
+  if (!std::isfinite(d) || d < min || d > max) {
+    std::ostringstream s;
+    s << d << " is outside [" << min << ", " << max << "]";
+    bad(pnh, name, s.str());
+  }
+  return d;
+}
+
+int getInt(const ros::NodeHandle& pnh, const std::string& name, int fallback, int min, int max) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(name, v)) return fallback;
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeInt) bad(pnh, name, "expected an integer");
+  const int i = static_cast<int>(v);
+  if (i < min || i > max) {
+    std::ostringstream s;
+    s << i << " is outside [" << min << ", " << max << "]";
+    bad(pnh, name, s.str());
+  }
+  return i;
+}
+
+bool getBool(const ros::NodeHandle& pnh, const std::string& name, bool fallback) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(name, v)) return fallback;
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) bad(pnh, name, "expected true or false");
+  return static_cast<bool>(v);
+}
+
+std::string getString(const ros::NodeHandle& pnh, const std::string& name,
+                      const std::string& fallback) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(name, v)) return fallback;
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeString) bad(pnh, name, "expected a string");
+  return static_cast<std::string>(v);
+}
+
+// A footprint is a list of [x, y] points, as in costmap_2d: either a YAML list or the string
+// form "[[x, y], [x, y], ...]" that costmap_2d also accepts.
+std::vector<std::array<double, 2>> parseFootprintString(const ros::NodeHandle& pnh,
+                                                         const std::string& text) {
+  std::vector<std::array<double, 2>> out;
+  std::vector<double> numbers;
+  std::string cleaned;
+  int depth = 0;
+  for (char c : text) {
+    if (c == '[') {
+      ++depth;
+      if (depth > 2) bad(pnh, "footprint", "too deeply nested: " + text);
+      cleaned += ' ';
+    } else if (c == ']') {
+      --depth;
+      if (depth < 0) bad(pnh, "footprint", "unbalanced brackets: " + text);
+      cleaned += ' ';
+    } else if (c == ',') {
+      cleaned += ' ';
+    } else {
+      cleaned += c;
+    }
+  }
+  if (depth != 0) bad(pnh, "footprint", "unbalanced brackets: " + text);
+  std::istringstream in(cleaned);
+  double d;
+  while (in >> d) numbers.push_back(d);
+  if (!in.eof()) bad(pnh, "footprint", "not a list of [x, y] points: " + text);
+  if (numbers.size() % 2 != 0) bad(pnh, "footprint", "odd number of coordinates: " + text);
+  for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) out.push_back({numbers[i], numbers[i + 1]});
+  return out;
+}
+
+std::vector<std::array<double, 2>> getFootprint(const ros::NodeHandle& pnh) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam("footprint", v)) return {};
+  std::vector<std::array<double, 2>> out;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    out = parseFootprintString(pnh, static_cast<std::string>(v));
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+    for (int i = 0; i < v.size(); ++i) {
+      XmlRpc::XmlRpcValue& pt = v[i];
+      if (pt.getType() != XmlRpc::XmlRpcValue::TypeArray || pt.size() != 2) {
+        bad(pnh, "footprint", "point " + std::to_string(i) + " is not an [x, y] pair");
+      }
+      bool okx = false, oky = false;
+      const double x = toDouble(pt[0], &okx), y = toDouble(pt[1], &oky);
+      if (!okx || !oky || !std::isfinite(x) || !std::isfinite(y)) {
+        bad(pnh, "footprint", "point " + std::to_string(i) + " has a non-numeric coordinate");
+      }
+      out.push_back({x, y});
+    }
+  } else {
+    bad(pnh, "footprint", "expected a list of [x, y] points");
+  }
+  if (!out.empty() && out.size() < 3) bad(pnh, "footprint", "needs at least 3 points");
+  return out;
+}
+
+bool validWeight(double w) { return std::isfinite(w) && w >= 1.0; }
+
+}  // namespace
+
+std::string normaliseFrame(const std::string& frame) {
+  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
+
+PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
+  PlannerParams p;
+  auto& l = p.lattice;
+  // Robot.
+  l.footprint = getFootprint(pnh);
+  l.robot_radius = getDouble(pnh, "robot_radius", l.robot_radius, 1e-3, 100.0);
+  // Motion primitives: a file, or generated.
+  l.mprim_file = getString(pnh, "mprim_file", "");
+  l.turning_radius = getDouble(pnh, "turning_radius", l.turning_radius, 0.0, 1000.0);
+  l.num_headings = getInt(pnh, "num_headings", l.num_headings, 8, 1024);
+  if (l.num_headings % 8 != 0) bad(pnh, "num_headings", "must be a multiple of 8");
+  l.allow_reverse = getBool(pnh, "allow_reverse", l.allow_reverse);
+  l.turn_in_place = getBool(pnh, "turn_in_place", l.turn_in_place);
+  l.cost_penalty = getDouble(pnh, "cost_penalty", l.cost_penalty, 0.0, 1e6);
+  l.num_inadmissible = getInt(pnh, "num_inadmissible", l.num_inadmissible, 0, 3);
+  l.nominal_speed = getDouble(pnh, "nominal_speed", l.nominal_speed, 1e-3, 100.0);
+  l.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.time_to_turn_45, 0.0, 1000.0);
+  l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
+  l.coarse_anchor = getBool(pnh, "coarse_anchor", l.coarse_anchor);
+  l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, 1024);
+  l.backward_search = getBool(pnh, "backward_search", l.backward_search);
+  l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
+  // Map.
+  p.occupancy.lethal_threshold =
+      getInt(pnh, "lethal_threshold", p.occupancy.lethal_threshold, 1, 100);
+  p.occupancy.unknown_is_free = getBool(pnh, "unknown_is_free", p.occupancy.unknown_is_free);
+  p.max_map_cells = static_cast<std::size_t>(
+      getInt(pnh, "max_map_cells", static_cast<int>(p.max_map_cells), 1, 1 << 30));
+  // Algorithm.
+  const std::string name = getString(pnh, "algorithm", amha::algorithmName(p.algorithm));
+  if (!amha::parseAlgorithm(name, &p.algorithm)) {
+    bad(pnh, "algorithm", "unknown algorithm '" + name + "' (amha, mha, ara, ana, wastar, astar)");
+  }
+  p.w1 = getDouble(pnh, "w1", -1, 1.0, 1e6);
+  p.w2 = getDouble(pnh, "w2", -1, 1.0, 1e6);
+  p.dw1 = getDouble(pnh, "dw1", -1, 0.0, 1e6);
+  p.dw2 = getDouble(pnh, "dw2", -1, 0.0, 1e6);
+  p.eps = getDouble(pnh, "eps", -1, 1.0, 1e6);
+  p.eps_decrement = getDouble(pnh, "eps_decrement", -1, 0.0, 1e6);
+  p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
+  p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
+  // Frames and server.
+  p.global_frame = normaliseFrame(getString(pnh, "global_frame", p.global_frame));
+  p.robot_base_frame = normaliseFrame(getString(pnh, "robot_base_frame", p.robot_base_frame));
+  if (p.global_frame.empty()) bad(pnh, "global_frame", "must not be empty");
+  if (p.robot_base_frame.empty()) bad(pnh, "robot_base_frame", "must not be empty");
+  p.tf_timeout = getDouble(pnh, "tf_timeout", p.tf_timeout, 0.0, 60.0);
+  p.max_queued_requests = getInt(pnh, "max_queued_requests", p.max_queued_requests, 0, 64);
+  p.marker_spacing = getDouble(pnh, "marker_spacing", p.marker_spacing, 0.01, 1e3);
+  // Check the search configuration once, so a bad weight fails at start-up, not per request.
+  amha::PlannerConfig check;
+  std::string error;
+  if (!searchConfigFor(p, "", 0.0, 0.0, &check, &error)) bad(pnh, "algorithm/weights", error);
+  return p;
+}
+
+bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_name, double w1,
+                     double w2, amha::PlannerConfig* out, std::string* error) {
+  amha::Algorithm algorithm = params.algorithm;
+  if (!algorithm_name.empty() && !amha::parseAlgorithm(algorithm_name, &algorithm)) {
+    *error = "unknown algorithm '" + algorithm_name + "' (amha, mha, ara, ana, wastar, astar)";
+    return false;
+  }
+  if (w1 != 0.0 && !validWeight(w1)) {
+    *error = "w1 must be finite and >= 1 (0 keeps the configured value)";
+    return false;
+  }
+  if (w2 != 0.0 && !validWeight(w2)) {
+    *error = "w2 must be finite and >= 1 (0 keeps the configured value)";
+    return false;
+  }
+  amha::PlannerConfig c = amha::defaultConfig(algorithm);
+  switch (algorithm) {
+    case amha::Algorithm::kAmhaStar:
+    case amha::Algorithm::kMhaStar:
+      if (params.w1 >= 0) c.w1 = params.w1;
+      if (params.w2 >= 0) c.w2 = params.w2;
+      if (params.dw1 >= 0) c.dw1 = params.dw1;
+      if (params.dw2 >= 0) c.dw2 = params.dw2;
+      if (w1 != 0.0) c.w1 = w1;
+      if (w2 != 0.0) c.w2 = w2;
+      break;
+    case amha::Algorithm::kAraStar:
+      if (params.eps >= 0) c.w1 = params.eps;
+      if (params.eps_decrement >= 0) c.dw1 = params.eps_decrement;
+      if (w1 != 0.0) c.w1 = w1;
+      break;
+    case amha::Algorithm::kWeightedAStar:
+      if (params.eps >= 0) c.w1 = params.eps;
+      if (w1 != 0.0) c.w1 = w1;
+      break;
+    case amha::Algorithm::kAnaStar:
+    case amha::Algorithm::kAStar:
+      break;  // no weights
+  }
+  // The lattice offers num_inadmissible heuristics; the search may use them all.
+  *out = c;
+  return true;
+}
+
+}  // namespace amha_planner

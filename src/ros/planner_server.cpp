@@ -1,0 +1,534 @@
+// The planning server (see planner_server.h): threads, tf2, and the mapping between the
+// lattice planner's results and the interfaces' status codes.
+#include "amha_planner/ros/planner_server.h"
+
+#include <chrono>
+#include <cmath>
+#include <future>
+#include <sstream>
+#include <utility>
+
+#include <tf2/exceptions.h>
+#include <tf2_geometry_msgs/tf2_geometry_msgs.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "amha_planner/ros/conversions.h"
+
+namespace amha_planner {
+
+namespace lat = amha::lattice;
+using Status = Plan::Response;
+
+// The action result repeats the service's codes; keep them identical.
+#define AMHA_SAME_CODE(c) \
+  static_assert(static_cast<unsigned>(Status::c) == static_cast<unsigned>(PlanAnytimeResult::c), \
+                "Plan.srv and PlanAnytime.action disagree on " #c)
+AMHA_SAME_CODE(SUCCESS);
+AMHA_SAME_CODE(CANCELLED);
+AMHA_SAME_CODE(INVALID_START);
+AMHA_SAME_CODE(INVALID_GOAL);
+AMHA_SAME_CODE(NO_PATH_FOUND);
+AMHA_SAME_CODE(TIME_EXHAUSTED);
+AMHA_SAME_CODE(MEMORY_EXHAUSTED);
+AMHA_SAME_CODE(TF_ERROR);
+AMHA_SAME_CODE(NO_MAP);
+AMHA_SAME_CODE(INVALID_REQUEST);
+AMHA_SAME_CODE(INTERNAL_ERROR);
+AMHA_SAME_CODE(OUT_OF_MAP);
+AMHA_SAME_CODE(BUSY);
+#undef AMHA_SAME_CODE
+
+namespace {
+
+const char* statusCodeName(std::uint32_t s) {
+  switch (s) {
+    case Status::SUCCESS: return "SUCCESS";
+    case Status::CANCELLED: return "CANCELLED";
+    case Status::INVALID_START: return "INVALID_START";
+    case Status::INVALID_GOAL: return "INVALID_GOAL";
+    case Status::NO_PATH_FOUND: return "NO_PATH_FOUND";
+    case Status::TIME_EXHAUSTED: return "TIME_EXHAUSTED";
+    case Status::MEMORY_EXHAUSTED: return "MEMORY_EXHAUSTED";
+    case Status::TF_ERROR: return "TF_ERROR";
+    case Status::NO_MAP: return "NO_MAP";
+    case Status::INVALID_REQUEST: return "INVALID_REQUEST";
+    case Status::INTERNAL_ERROR: return "INTERNAL_ERROR";
+    case Status::OUT_OF_MAP: return "OUT_OF_MAP";
+    case Status::BUSY: return "BUSY";
+  }
+  return "UNKNOWN";
+}
+
+std::uint32_t statusForQueryError(lat::QueryError e) {
+  switch (e) {
+    case lat::QueryError::kStartNotFinite:
+    case lat::QueryError::kStartInCollision: return Status::INVALID_START;
+    case lat::QueryError::kGoalNotFinite:
+    case lat::QueryError::kGoalInCollision: return Status::INVALID_GOAL;
+    case lat::QueryError::kStartOutOfMap:
+    case lat::QueryError::kGoalOutOfMap: return Status::OUT_OF_MAP;
+    case lat::QueryError::kNone: break;
+  }
+  return Status::INTERNAL_ERROR;
+}
+
+std::string fmt(double v, int precision = 3) {
+  std::ostringstream s;
+  s.precision(precision);
+  s << std::fixed << v;
+  return s.str();
+}
+
+// Moves rather than copies: with every solution's path a result can be megabytes, and a
+// cancelled goal's result should leave at once.
+template <class Result>
+void moveResponse(Plan::Response&& in, Result* out) {
+  out->status = in.status;
+  out->message = std::move(in.message);
+  out->request_id = in.request_id;
+  out->path = std::move(in.path);
+  out->cost = in.cost;
+  out->bound = in.bound;
+  out->certified_bound = in.certified_bound;
+  out->planning_time = in.planning_time;
+  out->expansions = in.expansions;
+  out->solutions = std::move(in.solutions);
+}
+
+}  // namespace
+
+PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
+    : nh_(nh), pnh_(pnh), params_(loadPlannerParams(pnh)) {
+  queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(params_.max_queued_requests));
+  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
+
+  // Publishers are thread-safe; they live on the private handle (~solutions, ~plan, ~footprints).
+  solutions_pub_ = pnh_.advertise<PlanSolution>("solutions", 32);
+  path_pub_ = pnh_.advertise<nav_msgs::Path>("plan", 1, /*latch=*/true);
+  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("footprints", 1, /*latch=*/true);
+
+  ros::NodeHandle map_nh(nh_);
+  map_nh.setCallbackQueue(&map_queue_);
+  map_sub_ = map_nh.subscribe("map", 1, &PlannerServer::onMap, this);
+
+  ros::NodeHandle service_nh(pnh_);
+  service_nh.setCallbackQueue(&service_queue_);
+  plan_srv_ = service_nh.advertiseService("plan", &PlannerServer::onPlan, this);
+  make_plan_srv_ = service_nh.advertiseService("make_plan", &PlannerServer::onMakePlan, this);
+
+  ros::NodeHandle action_nh(pnh_);
+  action_nh.setCallbackQueue(&action_queue_);
+  action_server_ = std::make_unique<ActionServer>(
+      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); },
+      [this](GoalHandle g) { onCancel(g); }, /*auto_start=*/false);
+  action_server_->start();
+
+  // Waiting service calls each hold a thread; one more answers BUSY while the queue is full.
+  map_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &map_queue_);
+  service_spinner_ = std::make_unique<ros::AsyncSpinner>(
+      static_cast<std::uint32_t>(params_.max_queued_requests + 2), &service_queue_);
+  action_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &action_queue_);
+  map_spinner_->start();
+  service_spinner_->start();
+  action_spinner_->start();
+
+  ROS_INFO_STREAM("amha_planner: ready; algorithm " << amha::algorithmName(params_.algorithm)
+                  << ", global frame '" << params_.global_frame << "', robot frame '"
+                  << params_.robot_base_frame << "', waiting for a map on "
+                  << map_sub_.getTopic());
+}
+
+PlannerServer::~PlannerServer() {
+  shutting_down_ = true;
+  {
+    std::lock_guard<std::mutex> lock(flags_mutex_);
+    for (const auto& flag : cancel_flags_) *flag = true;
+  }
+  // Stop taking callbacks; waiting service threads return as their cancelled jobs finish.
+  map_spinner_->stop();
+  action_spinner_->stop();
+  service_spinner_->stop();
+  queue_.reset();
+  action_server_.reset();
+  map_sub_.shutdown();
+  plan_srv_.shutdown();
+  make_plan_srv_.shutdown();
+}
+
+std::shared_ptr<lat::LatticePlanner> PlannerServer::currentPlanner() const {
+  std::lock_guard<std::mutex> lock(planner_mutex_);
+  return planner_;
+}
+
+std::shared_ptr<std::atomic<bool>> PlannerServer::newCancelFlag() {
+  auto flag = std::make_shared<std::atomic<bool>>(false);
+  std::lock_guard<std::mutex> lock(flags_mutex_);
+  if (shutting_down_) *flag = true;
+  cancel_flags_.insert(flag);
+  return flag;
+}
+
+void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& flag) {
+  std::lock_guard<std::mutex> lock(flags_mutex_);
+  cancel_flags_.erase(flag);
+}
+
+void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool had_map = currentPlanner() != nullptr;
+  try {
+    auto grid = std::make_shared<const lat::GridMap>(
+        gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells));
+    // Built off the lock: plans keep using the previous planner until the swap.
+    auto planner = std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
+    {
+      std::lock_guard<std::mutex> lock(planner_mutex_);
+      planner_ = std::move(planner);
+      ++maps_accepted_;
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ROS_INFO("amha_planner: map %ux%u at %.3f m/cell accepted; lattice ready in %.2f s",
+             msg->info.width, msg->info.height, msg->info.resolution, seconds);
+    const std::string frame = normaliseFrame(msg->header.frame_id);
+    if (!frame.empty() && frame != params_.global_frame) {
+      ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
+               "map coordinates as '%s' coordinates",
+               frame.c_str(), params_.global_frame.c_str(), params_.global_frame.c_str());
+    }
+  } catch (const std::exception& e) {
+    ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
+              msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(),
+              e.what(),
+              had_map ? "keeping the previous map" : "no map yet, requests get NO_MAP");
+  }
+}
+
+bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
+                                  geometry_msgs::PoseStamped* out, Plan::Response* res) {
+  const char* what = is_start ? "start" : "goal";
+  const std::string& global = params_.global_frame;
+  std::string frame = normaliseFrame(in.header.frame_id);
+  if (frame.empty() && is_start) {
+    // The robot's current pose.
+    try {
+      const auto t = tf_buffer_.lookupTransform(global, params_.robot_base_frame, ros::Time(0),
+                                                ros::Duration(params_.tf_timeout));
+      out->header = t.header;
+      out->header.frame_id = global;
+      out->pose.position.x = t.transform.translation.x;
+      out->pose.position.y = t.transform.translation.y;
+      out->pose.position.z = t.transform.translation.z;
+      out->pose.orientation = t.transform.rotation;
+    } catch (const tf2::TransformException& e) {
+      res->status = Status::TF_ERROR;
+      res->message = "start has no frame, so the robot's pose is used, but the transform " +
+                     global + " <- " + params_.robot_base_frame + " is unavailable: " + e.what();
+      return false;
+    }
+    std::string why;
+    if (!checkPose(out->pose, &why)) {
+      res->status = Status::INVALID_START;
+      res->message = "the robot's pose from tf is unusable: " + why;
+      return false;
+    }
+    return true;
+  }
+  if (frame.empty()) frame = global;
+  std::string why;
+  if (!checkPose(in.pose, &why)) {
+    res->status = is_start ? Status::INVALID_START : Status::INVALID_GOAL;
+    res->message = std::string(what) + " pose: " + why;
+    return false;
+  }
+  if (frame == global) {
+    *out = in;
+    out->header.frame_id = global;
+    return true;
+  }
+  try {
+    const auto t = tf_buffer_.lookupTransform(global, frame, in.header.stamp,
+                                              ros::Duration(params_.tf_timeout));
+    tf2::doTransform(in, *out, t);
+  } catch (const tf2::TransformException& e) {
+    res->status = Status::TF_ERROR;
+    res->message = std::string("cannot transform the ") + what + " from '" + frame + "' to '" +
+                   global + "': " + e.what();
+    return false;
+  }
+  return true;
+}
+
+Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
+                                      const std::atomic<bool>& cancel, const SolutionSink& sink) {
+  Plan::Response res;
+  res.request_id = id;
+  res.status = Status::INTERNAL_ERROR;
+  const std::string& frame = params_.global_frame;
+  const ros::Time stamp = ros::Time::now();
+  res.path.header.frame_id = frame;
+  res.path.header.stamp = stamp;
+  try {
+    if (shutting_down_) {
+      res.status = Status::CANCELLED;
+      res.message = "the planner is shutting down";
+      return res;
+    }
+    if (cancel) {
+      res.status = Status::CANCELLED;
+      res.message = "cancelled before planning started";
+      return res;
+    }
+    // The planner of the latest map; this request keeps it even if a new map arrives.
+    const auto planner = currentPlanner();
+    if (!planner) {
+      res.status = Status::NO_MAP;
+      res.message = "no valid map received on " + map_sub_.getTopic() + " yet";
+      return res;
+    }
+    amha::PlannerConfig config;
+    std::string error;
+    if (!searchConfigFor(params_, r.algorithm, r.w1, r.w2, &config, &error)) {
+      res.status = Status::INVALID_REQUEST;
+      res.message = error;
+      return res;
+    }
+    const double budget = r.time_budget == 0.0 ? params_.default_time_budget : r.time_budget;
+    if (!std::isfinite(budget) || budget < 0.0) {
+      res.status = Status::INVALID_REQUEST;
+      res.message = "time_budget must be finite and >= 0 (0: the default)";
+      return res;
+    }
+    geometry_msgs::PoseStamped start, goal;
+    if (!toGlobalFrame(r.start, true, &start, &res)) return res;
+    if (!toGlobalFrame(r.goal, false, &goal, &res)) return res;
+    const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
+
+    amha::SearchLimits limits;
+    limits.time_limit_s = budget;
+    limits.cancel = &cancel;
+    limits.max_memory_bytes = static_cast<std::size_t>(params_.max_memory_mb * 1024.0 * 1024.0);
+
+    // Each improvement is published as it is found (~solutions, ~plan, ~footprints).
+    std::vector<amha::StateId> previous_ids;  // state ids identify a path exactly
+    const auto on_solution = [&](const lat::LatticeSolution& solution) {
+      PlanSolution m = planSolutionMsg(solution, id, frame, stamp);
+      m.same_path_as_previous = !res.solutions.empty() && previous_ids == solution.search.path;
+      previous_ids = solution.search.path;
+      solutions_pub_.publish(m);
+      if (!m.same_path_as_previous) {
+        path_pub_.publish(m.path);
+        markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, g, frame, stamp,
+                                              params_.marker_spacing));
+      }
+      if (sink) sink(m);
+      if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
+      res.solutions.push_back(std::move(m));
+    };
+    const lat::PlanResult result = planner->plan(s, g, config, limits, on_solution);
+    res.planning_time = result.search.elapsed_s + result.heuristic_seconds;
+    res.expansions = result.search.expansions;
+
+    if (result.error != lat::QueryError::kNone) {
+      res.status = statusForQueryError(result.error);
+      res.message = result.message;
+      return res;
+    }
+    const auto status = result.search.status;
+    if (!res.solutions.empty()) {
+      const PlanSolution& best = res.solutions.back();
+      res.path = pathFromPoses(result.solutions.back().poses, frame, stamp);
+      res.cost = best.cost;
+      res.bound = best.bound;
+      res.certified_bound = best.certified_bound;
+      const std::string summary = std::to_string(res.solutions.size()) +
+                                  " solution(s), best cost " + fmt(best.cost) + " m, bound " +
+                                  fmt(best.bound, 2) + ", certified " +
+                                  fmt(best.certified_bound, 2);
+      res.status = Status::SUCCESS;
+      switch (status) {
+        case amha::SearchStatus::kProvenOptimal:
+          res.message = "optimal path: " + summary;
+          break;
+        case amha::SearchStatus::kBoundReached:
+          res.message = "path within the requested bound: " + summary;
+          break;
+        case amha::SearchStatus::kTimeLimit:
+          res.message = "time budget of " + fmt(budget, 2) +
+                        " s used up; returning the best path so far: " + summary;
+          break;
+        case amha::SearchStatus::kMemoryLimit:
+        case amha::SearchStatus::kExpansionLimit:
+          res.message = std::string("search stopped (") + amha::statusName(status) +
+                        "); returning the best path so far: " + summary;
+          break;
+        case amha::SearchStatus::kCancelled:
+          res.status = Status::CANCELLED;
+          res.message = "cancelled; returning the best path so far: " + summary;
+          break;
+        case amha::SearchStatus::kNoSolution:
+          res.status = Status::INTERNAL_ERROR;
+          res.message = "the search reported no solution after finding one: " + summary;
+          break;
+      }
+      return res;
+    }
+    switch (status) {
+      case amha::SearchStatus::kNoSolution:
+        res.status = Status::NO_PATH_FOUND;
+        res.message = "no path: the goal cannot be reached from the start on this map";
+        break;
+      case amha::SearchStatus::kTimeLimit:
+        res.status = Status::TIME_EXHAUSTED;
+        res.message = "time budget of " + fmt(budget, 2) + " s used up before any path was found";
+        break;
+      case amha::SearchStatus::kMemoryLimit:
+        res.status = Status::MEMORY_EXHAUSTED;
+        res.message = "memory cap of " + fmt(params_.max_memory_mb, 0) +
+                      " MB (~max_memory_mb) reached before any path was found";
+        break;
+      case amha::SearchStatus::kCancelled:
+        res.status = Status::CANCELLED;
+        res.message = "cancelled before any path was found";
+        break;
+      default:
+        res.status = Status::INTERNAL_ERROR;
+        res.message = std::string("the search ended (") + amha::statusName(status) +
+                      ") without a solution";
+        break;
+    }
+  } catch (const std::exception& e) {
+    res.status = Status::INTERNAL_ERROR;
+    res.message = std::string("planner failure: ") + e.what();
+  }
+  return res;
+}
+
+Plan::Response PlannerServer::runBlocking(const Request& request) {
+  const std::uint32_t id = next_request_id_++;
+  auto done = std::make_shared<std::promise<Plan::Response>>();
+  std::future<Plan::Response> response = done->get_future();
+  auto flag = newCancelFlag();
+  const bool queued = queue_->submit([this, request, id, flag, done] {
+    done->set_value(execute(request, id, *flag, {}));
+    releaseCancelFlag(flag);
+  });
+  if (!queued) {
+    releaseCancelFlag(flag);
+    Plan::Response busy;
+    busy.request_id = id;
+    busy.status = Status::BUSY;
+    busy.message = "busy: one request is planning and " +
+                   std::to_string(params_.max_queued_requests) +
+                   " are waiting (~max_queued_requests); try again later";
+    busy.path.header.frame_id = params_.global_frame;
+    return busy;
+  }
+  return response.get();
+}
+
+namespace {
+void logOutcome(const char* interface, const Plan::Response& res) {
+  if (res.status == Status::SUCCESS) {
+    ROS_INFO("amha_planner: %s request %u: SUCCESS, %s", interface, res.request_id,
+             res.message.c_str());
+  } else {
+    ROS_WARN("amha_planner: %s request %u: %s, %s", interface, res.request_id,
+             statusCodeName(res.status), res.message.c_str());
+  }
+}
+}  // namespace
+
+bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
+  Request r;
+  r.start = req.start;
+  r.goal = req.goal;
+  r.time_budget = req.time_budget;
+  r.algorithm = req.algorithm;
+  r.w1 = req.w1;
+  r.w2 = req.w2;
+  res = runBlocking(r);
+  logOutcome("plan", res);
+  return true;
+}
+
+bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
+                               nav_msgs::GetPlan::Response& res) {
+  Request r;
+  r.start = req.start;
+  r.goal = req.goal;
+  const Plan::Response out = runBlocking(r);
+  logOutcome("make_plan", out);
+  // Like move_base's make_plan: an empty plan means failure (the log says why).
+  if (out.status == Status::SUCCESS) res.plan = out.path;
+  res.plan.header.frame_id = params_.global_frame;
+  res.plan.header.stamp = out.path.header.stamp;
+  return true;
+}
+
+void PlannerServer::onGoal(GoalHandle goal) {
+  const auto g = goal.getGoal();
+  Request r;
+  r.start = g->start;
+  r.goal = g->goal;
+  r.time_budget = g->time_budget;
+  r.algorithm = g->algorithm;
+  r.w1 = g->w1;
+  r.w2 = g->w2;
+  const std::uint32_t id = next_request_id_++;
+  const std::string goal_id = goal.getGoalID().id;
+  auto flag = newCancelFlag();
+
+  std::lock_guard<std::mutex> lock(goals_mutex_);
+  const bool queued = queue_->submit([this, goal, r, id, flag, goal_id]() mutable {
+    { std::lock_guard<std::mutex> accepted(goals_mutex_); }  // setAccepted() has run
+    Plan::Response res = execute(r, id, *flag, [&goal](const PlanSolution& s) {
+      PlanAnytimeFeedback feedback;
+      feedback.solution = s;
+      goal.publishFeedback(feedback);
+    });
+    logOutcome("plan_anytime", res);
+    const std::uint32_t status = res.status;
+    const std::string message = res.message;
+    PlanAnytimeResult result;
+    moveResponse(std::move(res), &result);
+    const auto state = goal.getGoalStatus().status;
+    const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
+                                  state == actionlib_msgs::GoalStatus::RECALLING;
+    if (status == Status::SUCCESS) {
+      goal.setSucceeded(result, message);
+    } else if (status == Status::CANCELLED && client_cancelled) {
+      goal.setCanceled(result, message);
+    } else {
+      goal.setAborted(result, message);
+    }
+    {
+      std::lock_guard<std::mutex> done(goals_mutex_);
+      goal_cancel_flags_.erase(goal_id);
+    }
+    releaseCancelFlag(flag);
+  });
+  if (!queued) {
+    releaseCancelFlag(flag);
+    PlanAnytimeResult busy;
+    busy.request_id = id;
+    busy.status = Status::BUSY;
+    busy.message = "busy: one request is planning and " +
+                   std::to_string(params_.max_queued_requests) +
+                   " are waiting (~max_queued_requests); try again later";
+    busy.path.header.frame_id = params_.global_frame;
+    ROS_WARN("amha_planner: plan_anytime request %u: BUSY", id);
+    goal.setRejected(busy, busy.message);
+    return;
+  }
+  goal_cancel_flags_[goal_id] = flag;
+  goal.setAccepted("queued as request " + std::to_string(id));
+}
+
+void PlannerServer::onCancel(GoalHandle goal) {
+  std::lock_guard<std::mutex> lock(goals_mutex_);
+  const auto it = goal_cancel_flags_.find(goal.getGoalID().id);
+  if (it != goal_cancel_flags_.end()) *it->second = true;
+}
+
+}  // namespace amha_planner

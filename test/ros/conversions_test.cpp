@@ -1,0 +1,165 @@
+// The ROS layer's conversions and request overrides, without a ROS master.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "amha_planner/ros/conversions.h"
+#include "amha_planner/ros/planner_params.h"
+
+namespace amha_planner {
+namespace {
+
+geometry_msgs::Pose poseWith(double x, double y, double qx, double qy, double qz, double qw) {
+  geometry_msgs::Pose p;
+  p.position.x = x;
+  p.position.y = y;
+  p.orientation.x = qx;
+  p.orientation.y = qy;
+  p.orientation.z = qz;
+  p.orientation.w = qw;
+  return p;
+}
+
+TEST(CheckPose, RefusesNonFiniteZeroAndNonNormalisedQuaternions) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::string why;
+  EXPECT_TRUE(checkPose(poseWith(1, 2, 0, 0, 0, 1), &why));
+  EXPECT_TRUE(checkPose(poseWith(1, 2, 0, 0, 0, 1.0009), &why)) << "within 1e-3 of unit norm";
+  EXPECT_FALSE(checkPose(poseWith(1, 2, 0, 0, 0, 1.002), &why));
+  EXPECT_NE(why.find("not normalised"), std::string::npos) << why;
+  EXPECT_FALSE(checkPose(poseWith(1, 2, 0, 0, 0, 0), &why));
+  EXPECT_FALSE(checkPose(poseWith(1, 2, 0, 0, nan, 1), &why));
+  EXPECT_NE(why.find("not finite"), std::string::npos) << why;
+  EXPECT_FALSE(checkPose(poseWith(nan, 2, 0, 0, 0, 1), &why));
+  EXPECT_FALSE(checkPose(poseWith(1, std::numeric_limits<double>::infinity(), 0, 0, 0, 1), &why));
+}
+
+TEST(Conversions, YawRoundTripsThroughQuaternions) {
+  for (double yaw : {-3.0, -1.2, 0.0, 0.4, 1.5707, 3.1}) {
+    geometry_msgs::Pose p;
+    p.position.x = 3;
+    p.position.y = -4;
+    p.orientation = quaternionFromYaw(yaw);
+    std::string why;
+    ASSERT_TRUE(checkPose(p, &why)) << why;
+    const auto q = pose2DFromPose(p);
+    EXPECT_DOUBLE_EQ(q.x, 3);
+    EXPECT_DOUBLE_EQ(q.y, -4);
+    EXPECT_NEAR(q.theta, yaw, 1e-9);
+  }
+}
+
+nav_msgs::OccupancyGrid grid(unsigned w, unsigned h, double yaw) {
+  nav_msgs::OccupancyGrid g;
+  g.info.width = w;
+  g.info.height = h;
+  g.info.resolution = 0.1f;
+  g.info.origin.position.x = 2.0;
+  g.info.origin.position.y = -1.0;
+  g.info.origin.orientation = quaternionFromYaw(yaw);
+  g.data.assign(static_cast<std::size_t>(w) * h, 0);
+  return g;
+}
+
+TEST(Conversions, OccupancyGridBecomesAGridMapWithItsOrigin) {
+  auto g = grid(4, 3, 0.5);
+  g.data[1] = 100;  // cell (1, 0)
+  g.data[4] = -1;   // cell (0, 1)
+  const auto map = gridMapFromOccupancy(g, amha::lattice::OccupancyConversion(), 1000);
+  EXPECT_EQ(map.width, 4);
+  EXPECT_EQ(map.height, 3);
+  EXPECT_NEAR(map.resolution, 0.1, 1e-7);
+  EXPECT_DOUBLE_EQ(map.origin_x, 2.0);
+  EXPECT_DOUBLE_EQ(map.origin_y, -1.0);
+  EXPECT_NEAR(map.origin_yaw, 0.5, 1e-9);
+  EXPECT_EQ(map.at(0, 0), amha::lattice::kFreeCost);
+  EXPECT_EQ(map.at(1, 0), amha::lattice::kLethalCost);
+  EXPECT_EQ(map.at(0, 1), amha::lattice::kUnknownCost);
+}
+
+TEST(Conversions, BadGridsAreRefusedWithAReason) {
+  using amha::lattice::LatticeError;
+  const amha::lattice::OccupancyConversion c;
+  auto g = grid(4, 3, 0.0);
+  g.data.pop_back();
+  EXPECT_THROW(gridMapFromOccupancy(g, c, 1000), LatticeError);
+  g = grid(4, 3, 0.0);
+  g.info.resolution = 0.0f;
+  EXPECT_THROW(gridMapFromOccupancy(g, c, 1000), LatticeError);
+  g = grid(4, 3, 0.0);
+  g.info.origin.orientation.w = 0.0;
+  EXPECT_THROW(gridMapFromOccupancy(g, c, 1000), LatticeError);
+  g = grid(4, 3, 0.0);
+  g.info.origin.orientation.x = std::sin(0.2);  // rolled: not a planar map
+  g.info.origin.orientation.w = std::cos(0.2);
+  EXPECT_THROW(gridMapFromOccupancy(g, c, 1000), LatticeError);
+  g = grid(40, 30, 0.0);
+  EXPECT_THROW(gridMapFromOccupancy(g, c, 1000), LatticeError) << "over max_cells";
+  g = grid(4, 3, 0.0);
+  g.info.width = 4000000000u;  // larger than an int
+  try {
+    gridMapFromOccupancy(g, c, 1000);
+    FAIL() << "a width beyond int must be refused";
+  } catch (const LatticeError& e) {
+    EXPECT_NE(std::string(e.what()).find("too large"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Conversions, CostsAreReportedInMetres) {
+  amha::lattice::LatticeSolution s;
+  s.search.cost = 12345;
+  s.search.nominal_bound = 4.0;
+  s.search.certified_bound = 1.5;
+  s.search.iteration = 3;
+  s.elapsed_total_s = 0.25;
+  s.poses = {{0, 0, 0}, {1, 0, 0.5}};
+  const auto m = planSolutionMsg(s, 7, "map", ros::Time(1, 0));
+  EXPECT_DOUBLE_EQ(m.cost, 12.345);
+  EXPECT_EQ(m.request_id, 7u);
+  EXPECT_DOUBLE_EQ(m.bound, 4.0);
+  EXPECT_DOUBLE_EQ(m.certified_bound, 1.5);
+  EXPECT_DOUBLE_EQ(m.elapsed, 0.25);
+  EXPECT_EQ(m.iteration, 3);
+  ASSERT_EQ(m.path.poses.size(), 2u);
+  EXPECT_EQ(m.path.header.frame_id, "map");
+  EXPECT_EQ(m.path.poses[1].header.frame_id, "map");
+  EXPECT_NEAR(m.path.poses[1].pose.orientation.z, std::sin(0.25), 1e-12);
+}
+
+TEST(SearchConfigFor, AppliesParametersThenRequestOverrides) {
+  PlannerParams p;  // defaults: amha with its preset
+  amha::PlannerConfig c;
+  std::string error;
+  ASSERT_TRUE(searchConfigFor(p, "", 0, 0, &c, &error)) << error;
+  EXPECT_EQ(c.algorithm, amha::Algorithm::kAmhaStar);
+  EXPECT_DOUBLE_EQ(c.w1, 5.0);
+  p.w1 = 3.0;
+  p.dw2 = 0.25;
+  ASSERT_TRUE(searchConfigFor(p, "", 0, 2.0, &c, &error)) << error;
+  EXPECT_DOUBLE_EQ(c.w1, 3.0);
+  EXPECT_DOUBLE_EQ(c.w2, 2.0) << "the request's w2";
+  EXPECT_DOUBLE_EQ(c.dw2, 0.25);
+  // ARA*: eps is w1; the request's w1 overrides it.
+  p.eps = 4.0;
+  ASSERT_TRUE(searchConfigFor(p, "ara", 0, 0, &c, &error)) << error;
+  EXPECT_EQ(c.algorithm, amha::Algorithm::kAraStar);
+  EXPECT_DOUBLE_EQ(c.w1, 4.0);
+  EXPECT_DOUBLE_EQ(c.w2, 1.0);
+  ASSERT_TRUE(searchConfigFor(p, "wastar", 2.5, 0, &c, &error)) << error;
+  EXPECT_DOUBLE_EQ(c.w1, 2.5);
+  // Refusals.
+  EXPECT_FALSE(searchConfigFor(p, "dijkstra", 0, 0, &c, &error));
+  EXPECT_NE(error.find("dijkstra"), std::string::npos);
+  EXPECT_FALSE(searchConfigFor(p, "", 0.5, 0, &c, &error));
+  EXPECT_FALSE(searchConfigFor(p, "", 0, std::numeric_limits<double>::infinity(), &c, &error));
+}
+
+TEST(NormaliseFrame, StripsALeadingSlash) {
+  EXPECT_EQ(normaliseFrame("/map"), "map");
+  EXPECT_EQ(normaliseFrame("map"), "map");
+  EXPECT_EQ(normaliseFrame(""), "");
+}
+
+}  // namespace
+}  // namespace amha_planner

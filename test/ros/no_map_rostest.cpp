@@ -1,0 +1,125 @@
+// Integration test of planner_node without a map (test/ros/planner_node_no_map.test): every
+// interface answers NO_MAP, bad maps leave it without a map, and a good map makes it plan.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include <actionlib/client/simple_action_client.h>
+#include <nav_msgs/GetPlan.h>
+#include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "amha_planner/Plan.h"
+#include "amha_planner/PlanAnytimeAction.h"
+#include "rostest_support.h"
+
+namespace amha_planner {
+namespace test {
+namespace {
+
+using Client = actionlib::SimpleActionClient<PlanAnytimeAction>;
+using Status = Plan::Response;
+ros::Publisher g_map_pub;
+
+const geometry_msgs::PoseStamped kStart = pose(0.0, 0.0, 0.0, "map");
+const geometry_msgs::PoseStamped kGoal = pose(3.5, -1.0, 0.0, "map");
+
+Plan::Response plan() {
+  Plan srv;
+  srv.request.start = kStart;
+  srv.request.goal = kGoal;
+  srv.request.time_budget = 5.0;
+  EXPECT_TRUE(ros::service::call("/planner/plan", srv));
+  return srv.response;
+}
+
+TEST(PlannerNodeWithoutMap, EveryInterfaceSaysNoMap) {
+  ASSERT_TRUE(ros::service::waitForService("/planner/plan", ros::Duration(30)));
+  const auto res = plan();
+  EXPECT_EQ(res.status, Status::NO_MAP) << res.message;
+  EXPECT_NE(res.message.find("no valid map"), std::string::npos) << res.message;
+  EXPECT_TRUE(res.path.poses.empty());
+
+  nav_msgs::GetPlan make_plan;
+  make_plan.request.start = kStart;
+  make_plan.request.goal = kGoal;
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", make_plan));
+  EXPECT_TRUE(make_plan.response.plan.poses.empty());
+
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10)));
+  PlanAnytimeGoal goal;
+  goal.start = kStart;
+  goal.goal = kGoal;
+  client.sendGoal(goal);
+  ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);
+  EXPECT_EQ(client.getResult()->status, PlanAnytimeResult::NO_MAP);
+}
+
+TEST(PlannerNodeWithoutMap, BadMapsAreRefusedThenAGoodMapIsUsed) {
+  std::vector<std::pair<std::string, nav_msgs::OccupancyGrid>> bad;
+  auto m = testMap();
+  m.data.resize(m.data.size() / 2);
+  bad.emplace_back("data length != width x height", m);
+  m = testMap();
+  m.info.resolution = 0.0f;
+  bad.emplace_back("zero resolution", m);
+  m = testMap();
+  m.info.resolution = -0.05f;
+  bad.emplace_back("negative resolution", m);
+  m = testMap();
+  m.info.resolution = std::numeric_limits<float>::quiet_NaN();
+  bad.emplace_back("NaN resolution", m);
+  m = testMap();
+  m.info.origin.orientation.w = 0.0;  // zero quaternion
+  bad.emplace_back("zero origin quaternion", m);
+  for (const auto& b : bad) {
+    g_map_pub.publish(b.second);
+    ros::WallDuration(0.5).sleep();
+    const auto res = plan();
+    EXPECT_EQ(res.status, Status::NO_MAP) << b.first << ": " << res.message;
+  }
+  g_map_pub.publish(testMap());
+  Plan::Response res;
+  for (int i = 0; i < 200; ++i) {
+    res = plan();
+    if (res.status != Status::NO_MAP) break;
+    ros::WallDuration(0.1).sleep();
+  }
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_EQ(checkPathCollisionFree(res.path, testMap(), testFootprint(), 65), "");
+  // The footprint, given as a costmap_2d-style string, was parsed into the test's rectangle:
+  // the start's outline on ~footprints has exactly its corners.
+  const auto markers = ros::topic::waitForMessage<visualization_msgs::MarkerArray>(
+      "/planner/footprints", ros::Duration(5));
+  ASSERT_TRUE(markers);
+  const visualization_msgs::Marker* outline = nullptr;
+  for (const auto& m : markers->markers) {
+    if (m.ns == "start_footprint") outline = &m;
+  }
+  ASSERT_NE(outline, nullptr);
+  const auto corners = testFootprint();
+  ASSERT_EQ(outline->points.size(), 2 * corners.size());  // one segment per side
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    EXPECT_NEAR(outline->points[2 * i].x, kStart.pose.position.x + corners[i][0], 1e-9);
+    EXPECT_NEAR(outline->points[2 * i].y, kStart.pose.position.y + corners[i][1], 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace test
+}  // namespace amha_planner
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "no_map_rostest");
+  ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  amha_planner::test::g_map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}

@@ -1,0 +1,92 @@
+// The server's request policy: one job at a time, FIFO, at most max_waiting waiting, the rest
+// refused; queued jobs still run at shutdown (their owners cancel them first).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <future>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "amha_planner/ros/plan_queue.h"
+
+namespace amha_planner {
+namespace {
+
+using namespace std::chrono_literals;
+
+// A job that blocks until released, so the test controls what is running.
+struct Gate {
+  std::promise<void> open;
+  std::shared_future<void> opened = open.get_future().share();
+};
+
+TEST(PlanQueue, RunsOneAtATimeInOrderAndRefusesBeyondTheBound) {
+  PlanQueue queue(2);
+  Gate gate;
+  std::mutex m;
+  std::vector<int> order;
+  std::atomic<int> concurrent{0}, max_concurrent{0};
+  auto job = [&](int id) {
+    return [&, id] {
+      const int now = ++concurrent;
+      int seen = max_concurrent.load();
+      while (now > seen && !max_concurrent.compare_exchange_weak(seen, now)) {}
+      gate.opened.wait();
+      {
+        std::lock_guard<std::mutex> lock(m);
+        order.push_back(id);
+      }
+      --concurrent;
+    };
+  };
+  ASSERT_TRUE(queue.submit(job(1)));
+  // Wait until job 1 is running, so that the waiting list is empty.
+  for (int i = 0; i < 1000 && !queue.running(); ++i) std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(queue.running());
+  EXPECT_TRUE(queue.submit(job(2)));
+  EXPECT_TRUE(queue.submit(job(3)));
+  EXPECT_EQ(queue.waiting(), 2u);
+  EXPECT_FALSE(queue.submit(job(4))) << "a third waiting job must be refused";
+  gate.open.set_value();
+  for (int i = 0; i < 2000; ++i) {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      if (order.size() == 3) break;
+    }
+    std::this_thread::sleep_for(1ms);
+  }
+  std::lock_guard<std::mutex> lock(m);
+  EXPECT_EQ(order, (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(max_concurrent.load(), 1);
+}
+
+TEST(PlanQueue, ZeroWaitingMeansRejectWhileBusy) {
+  PlanQueue queue(0);
+  Gate gate;
+  std::atomic<bool> ran{false};
+  ASSERT_TRUE(queue.submit([&] { gate.opened.wait(); }));
+  for (int i = 0; i < 1000 && !queue.running(); ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_FALSE(queue.submit([&] { ran = true; }));
+  gate.open.set_value();
+  for (int i = 0; i < 1000 && queue.running(); ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_TRUE(queue.submit([&] { ran = true; })) << "accepted again once idle";
+  for (int i = 0; i < 1000 && !ran; ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_TRUE(ran);
+}
+
+TEST(PlanQueue, DestructionRunsWaitingJobs) {
+  std::atomic<int> ran{0};
+  {
+    PlanQueue queue(3);
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(queue.submit([&] {
+      std::this_thread::sleep_for(2ms);
+      ++ran;
+    }));
+  }
+  EXPECT_EQ(ran.load(), 4) << "every accepted job gets its answer";
+}
+
+}  // namespace
+}  // namespace amha_planner

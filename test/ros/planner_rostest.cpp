@@ -1,0 +1,541 @@
+// Integration tests of amha_planner/PlannerNodelet (test/ros/planner_nodelet.test): the nodelet
+// runs in a manager, this node publishes the map, calls ~plan, ~make_plan and ~plan_anytime, and
+// checks the answers independently (paths against the published map, bounds, timing).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <future>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <actionlib/client/simple_action_client.h>
+#include <nav_msgs/GetPlan.h>
+#include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "amha_planner/Plan.h"
+#include "amha_planner/PlanAnytimeAction.h"
+#include "amha_planner/PlanSolution.h"
+#include "rostest_support.h"
+
+namespace amha_planner {
+namespace test {
+namespace {
+
+using Client = actionlib::SimpleActionClient<PlanAnytimeAction>;
+using Clock = std::chrono::steady_clock;
+using Status = Plan::Response;
+constexpr double kResolution = 0.05;   // the test map's
+constexpr int kLethal = 65;            // the test config's lethal_threshold
+constexpr double kHeadingBin = 2 * M_PI / 16;
+
+ros::NodeHandle* g_nh = nullptr;
+ros::Publisher g_map_pub;
+
+// Every message on ~solutions, for comparing with the responses.
+std::mutex g_solutions_mutex;
+std::vector<PlanSolution> g_solutions;
+
+void onSolution(const PlanSolution::ConstPtr& s) {
+  std::lock_guard<std::mutex> lock(g_solutions_mutex);
+  g_solutions.push_back(*s);
+}
+
+std::vector<PlanSolution> solutionsOf(std::uint32_t request_id, std::size_t expected) {
+  for (int i = 0; i < 200; ++i) {
+    {
+      std::lock_guard<std::mutex> lock(g_solutions_mutex);
+      std::vector<PlanSolution> out;
+      for (const auto& s : g_solutions) {
+        if (s.request_id == request_id) out.push_back(s);
+      }
+      if (out.size() >= expected) return out;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  std::lock_guard<std::mutex> lock(g_solutions_mutex);
+  std::vector<PlanSolution> out;
+  for (const auto& s : g_solutions) {
+    if (s.request_id == request_id) out.push_back(s);
+  }
+  return out;
+}
+
+Plan::Response plan(const geometry_msgs::PoseStamped& start,
+                    const geometry_msgs::PoseStamped& goal, double budget,
+                    const std::string& algorithm = "", double w1 = 0, double w2 = 0) {
+  Plan srv;
+  srv.request.start = start;
+  srv.request.goal = goal;
+  srv.request.time_budget = budget;
+  srv.request.algorithm = algorithm;
+  srv.request.w1 = w1;
+  srv.request.w2 = w2;
+  EXPECT_TRUE(ros::service::call("/planner/plan", srv)) << "the ~plan service call failed";
+  return srv.response;
+}
+
+// Queries the planner without searching to learn which map it uses: the start lies in the
+// maze's door, closed in testMapWithExtraBlock() (INVALID_START) and open in testMap() (then
+// the goal, in the block of both maps, gives INVALID_GOAL).
+std::uint32_t probeMap() {
+  return plan(pose(11.0, 8.0, 0, "map"), pose(2.5, 4.0, 0, "map"), 1.0).status;
+}
+bool waitForProbe(std::uint32_t expected, double seconds) {
+  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < deadline) {
+    if (probeMap() == expected) return true;
+    ros::WallDuration(0.05).sleep();
+  }
+  return false;
+}
+
+// The path must be in the map frame, start at the start and end at the goal (within the
+// lattice's resolution and heading bin), and be collision-free on `map`.
+void expectValidPath(const nav_msgs::Path& path, const geometry_msgs::PoseStamped& start,
+                     const geometry_msgs::PoseStamped& goal, const nav_msgs::OccupancyGrid& map) {
+  ASSERT_FALSE(path.poses.empty());
+  EXPECT_EQ(path.header.frame_id, "map");
+  const auto& first = path.poses.front().pose;
+  const auto& last = path.poses.back().pose;
+  EXPECT_LE(std::hypot(first.position.x - start.pose.position.x,
+                       first.position.y - start.pose.position.y),
+            kResolution);
+  EXPECT_LE(angleDiff(yawOf(first), yawOf(start.pose)), kHeadingBin / 2 + 1e-6);
+  EXPECT_LE(std::hypot(last.position.x - goal.pose.position.x,
+                       last.position.y - goal.pose.position.y),
+            kResolution);
+  EXPECT_LE(angleDiff(yawOf(last), yawOf(goal.pose)), kHeadingBin / 2 + 1e-6);
+  for (const auto& p : path.poses) EXPECT_EQ(p.header.frame_id, "map");
+  const std::string collision = checkPathCollisionFree(path, map, testFootprint(), kLethal);
+  EXPECT_EQ(collision, "") << "the path collides";
+}
+
+// Costs non-increasing, bounds >= 1 and non-increasing, certified <= nominal.
+void expectMonotone(const std::vector<PlanSolution>& solutions) {
+  for (std::size_t i = 0; i < solutions.size(); ++i) {
+    const auto& s = solutions[i];
+    EXPECT_GE(s.certified_bound, 1.0);
+    EXPECT_GE(s.bound, 1.0);
+    EXPECT_LE(s.certified_bound, s.bound + 1e-9);
+    EXPECT_GT(s.cost, 0.0);
+    if (i > 0) {
+      const auto& p = solutions[i - 1];
+      EXPECT_LE(s.cost, p.cost + 1e-9) << "solution " << i;
+      EXPECT_LE(s.bound, p.bound + 1e-9) << "solution " << i;
+      EXPECT_LE(s.certified_bound, p.certified_bound + 1e-9) << "solution " << i;
+      EXPECT_GE(s.elapsed, p.elapsed);
+    }
+  }
+}
+
+// In a response's solutions[], a path repeated from the previous solution is left out.
+void expectSolutionPaths(const std::vector<PlanSolution>& solutions,
+                         const geometry_msgs::PoseStamped& start,
+                         const geometry_msgs::PoseStamped& goal) {
+  ASSERT_FALSE(solutions.empty());
+  EXPECT_FALSE(solutions.front().same_path_as_previous);
+  for (std::size_t i = 0; i < solutions.size(); ++i) {
+    const auto& s = solutions[i];
+    if (s.same_path_as_previous) {
+      EXPECT_TRUE(s.path.poses.empty()) << "solution " << i;
+      EXPECT_DOUBLE_EQ(s.cost, solutions[i - 1].cost) << "solution " << i;
+    } else {
+      expectValidPath(s.path, start, goal, testMap());
+    }
+  }
+}
+
+// A query across the rooms (through a door) and one through the whole maze (a long search).
+const geometry_msgs::PoseStamped kRoomStart = pose(0.0, 0.0, 0.0, "map");
+const geometry_msgs::PoseStamped kRoomGoal = pose(9.0, 4.0, M_PI / 2, "map");
+const geometry_msgs::PoseStamped kMazeStart = pose(0.0, 0.0, 0.0, "map");
+const geometry_msgs::PoseStamped kMazeGoal = pose(27.5, 16.5, 0.0, "map");
+
+TEST(PlannerNodelet, ServesItsInterfaces) {
+  EXPECT_TRUE(ros::service::waitForService("/planner/plan", ros::Duration(5)));
+  EXPECT_TRUE(ros::service::waitForService("/planner/make_plan", ros::Duration(5)));
+  Client client("/planner/plan_anytime", true);
+  EXPECT_TRUE(client.waitForServer(ros::Duration(5)));
+}
+
+TEST(PlannerNodelet, PlanSucceedsWithAValidPathAndStreamsItsSolutions) {
+  const auto res = plan(kRoomStart, kRoomGoal, 5.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
+  ASSERT_FALSE(res.solutions.empty());
+  expectMonotone(res.solutions);
+  const auto& best = res.solutions.back();
+  EXPECT_DOUBLE_EQ(res.cost, best.cost);
+  EXPECT_DOUBLE_EQ(res.bound, best.bound);
+  EXPECT_DOUBLE_EQ(res.certified_bound, best.certified_bound);
+  EXPECT_EQ(res.path.poses.size(), best.path.poses.size());
+  // The straight-line distance is a lower bound on the cost (metres-equivalent).
+  EXPECT_GE(res.cost + 1e-6, std::hypot(9.0, 4.0));
+  expectSolutionPaths(res.solutions, kRoomStart, kRoomGoal);
+  for (const auto& s : res.solutions) EXPECT_EQ(s.request_id, res.request_id);
+  // ~solutions carried the same solutions, in order, each with its full path.
+  const auto streamed = solutionsOf(res.request_id, res.solutions.size());
+  ASSERT_EQ(streamed.size(), res.solutions.size());
+  expectMonotone(streamed);
+  for (std::size_t i = 0; i < streamed.size(); ++i) {
+    EXPECT_DOUBLE_EQ(streamed[i].cost, res.solutions[i].cost);
+    EXPECT_DOUBLE_EQ(streamed[i].bound, res.solutions[i].bound);
+    EXPECT_EQ(streamed[i].same_path_as_previous, res.solutions[i].same_path_as_previous);
+    expectValidPath(streamed[i].path, kRoomStart, kRoomGoal, testMap());
+    if (i > 0 && streamed[i].same_path_as_previous) {
+      EXPECT_EQ(streamed[i].path.poses.size(), streamed[i - 1].path.poses.size());
+    }
+  }
+  // ~plan (latched) holds the latest path; ~footprints the markers along it.
+  auto latched = ros::topic::waitForMessage<nav_msgs::Path>("/planner/plan", ros::Duration(5));
+  ASSERT_TRUE(latched);
+  EXPECT_EQ(latched->poses.size(), res.path.poses.size());
+  auto markers = ros::topic::waitForMessage<visualization_msgs::MarkerArray>(
+      "/planner/footprints", ros::Duration(5));
+  ASSERT_TRUE(markers);
+  bool footprints = false, start = false, goal = false;
+  for (const auto& m : markers->markers) {
+    footprints |= m.ns == "footprints" && m.points.size() >= 8;
+    start |= m.ns == "start";
+    goal |= m.ns == "goal";
+  }
+  EXPECT_TRUE(footprints && start && goal);
+}
+
+TEST(PlannerNodelet, EveryAlgorithmGivesValidMonotoneSolutions) {
+  for (const char* algorithm : {"amha", "mha", "ara", "ana", "wastar", "astar"}) {
+    SCOPED_TRACE(algorithm);
+    const auto res = plan(kRoomStart, kRoomGoal, 5.0, algorithm);
+    ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+    expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
+    expectMonotone(res.solutions);
+  }
+}
+
+TEST(PlannerNodelet, ActionSendsOneFeedbackPerSolution) {
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal goal;
+  goal.start = kRoomStart;
+  goal.goal = kRoomGoal;
+  goal.time_budget = 5.0;
+  std::mutex m;
+  std::vector<PlanSolution> feedback;
+  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+                  [&](const PlanAnytimeFeedbackConstPtr& f) {
+                    std::lock_guard<std::mutex> lock(m);
+                    feedback.push_back(f->solution);
+                  });
+  ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+  const auto result = client.getResult();
+  ASSERT_EQ(result->status, PlanAnytimeResult::SUCCESS) << result->message;
+  expectValidPath(result->path, kRoomStart, kRoomGoal, testMap());
+  std::lock_guard<std::mutex> lock(m);
+  ASSERT_EQ(feedback.size(), result->solutions.size());
+  for (std::size_t i = 0; i < feedback.size(); ++i) {
+    EXPECT_DOUBLE_EQ(feedback[i].cost, result->solutions[i].cost);
+    expectValidPath(feedback[i].path, kRoomStart, kRoomGoal, testMap());  // always a full path
+  }
+  expectMonotone(feedback);
+  expectSolutionPaths(result->solutions, kRoomStart, kRoomGoal);
+}
+
+TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal goal;
+  goal.start = kMazeStart;
+  goal.goal = kMazeGoal;
+  goal.time_budget = 60.0;
+  std::mutex m;
+  std::condition_variable cv;
+  std::vector<PlanSolution> feedback;
+  bool done = false;
+  Clock::time_point done_at;
+  client.sendGoal(
+      goal,
+      [&](const actionlib::SimpleClientGoalState&, const PlanAnytimeResultConstPtr&) {
+        std::lock_guard<std::mutex> lock(m);
+        done = true;
+        done_at = Clock::now();
+        cv.notify_all();
+      },
+      Client::SimpleActiveCallback(),
+      [&](const PlanAnytimeFeedbackConstPtr& f) {
+        std::lock_guard<std::mutex> lock(m);
+        feedback.push_back(f->solution);
+        cv.notify_all();
+      });
+  {
+    std::unique_lock<std::mutex> lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(30), [&] { return !feedback.empty() || done; }));
+    ASSERT_FALSE(done) << "the maze search finished before it could be cancelled: make it harder";
+  }
+  ros::WallDuration(0.05).sleep();  // cancel in the middle of an improvement, not right after one
+  Clock::time_point cancelled_at;
+  {
+    std::lock_guard<std::mutex> lock(m);
+    ASSERT_FALSE(done) << "the maze search finished before it could be cancelled: make it harder";
+    cancelled_at = Clock::now();
+  }
+  client.cancelGoal();
+  {
+    std::unique_lock<std::mutex> lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(5), [&] { return done; }));
+  }
+  const double latency = std::chrono::duration<double>(done_at - cancelled_at).count();
+  const auto result = client.getResult();
+  std::printf("[ INFO     ] cancel -> result: %.1f ms, %zu solution(s) before it, result %u kB\n",
+              latency * 1e3, feedback.size(),
+              ros::serialization::serializationLength(*result) / 1024);
+  EXPECT_LT(latency, 0.050) << "the result must arrive within 50 ms of the cancel";
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
+  EXPECT_EQ(result->status, PlanAnytimeResult::CANCELLED) << result->message;
+  ASSERT_FALSE(result->solutions.empty());
+  std::lock_guard<std::mutex> lock(m);
+  EXPECT_EQ(result->solutions.size(), feedback.size());
+  EXPECT_DOUBLE_EQ(result->cost, feedback.back().cost) << "the best path so far";
+  expectValidPath(result->path, kMazeStart, kMazeGoal, testMap());
+}
+
+TEST(PlannerNodelet, MakePlanWorks) {
+  nav_msgs::GetPlan srv;
+  srv.request.start = kRoomStart;
+  srv.request.goal = pose(3.5, -1.0, 0.0, "map");
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", srv));
+  expectValidPath(srv.response.plan, srv.request.start, srv.request.goal, testMap());
+  // A failure is an empty plan (as move_base's make_plan does).
+  srv.request.goal = pose(2.5, 4.0, 0.0, "map");  // in the block
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", srv));
+  EXPECT_TRUE(srv.response.plan.poses.empty());
+}
+
+TEST(PlannerNodelet, StartFromTfAndGoalInAnotherFrame) {
+  // planner_nodelet.test publishes map -> base_link (1, 1, yaw 0.5) and map -> odom
+  // (0.5, -0.5, yaw 0.3).
+  geometry_msgs::PoseStamped start;  // empty frame: the robot's pose
+  const auto goal_in_odom = pose(3.0, 2.0, 0.2, "odom");
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  const auto goal_in_map = pose(0.5 + c * 3.0 - s * 2.0, -0.5 + s * 3.0 + c * 2.0, 0.5, "map");
+  const auto res = plan(start, goal_in_odom, 5.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  expectValidPath(res.path, pose(1.0, 1.0, 0.5, "map"), goal_in_map, testMap());
+
+  nav_msgs::GetPlan srv;  // make_plan: the same convention
+  srv.request.goal = goal_in_odom;
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", srv));
+  expectValidPath(srv.response.plan, pose(1.0, 1.0, 0.5, "map"), goal_in_map, testMap());
+}
+
+TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto with_quaternion = [](geometry_msgs::PoseStamped p, double x, double y, double z,
+                            double w) {
+    p.pose.orientation.x = x;
+    p.pose.orientation.y = y;
+    p.pose.orientation.z = z;
+    p.pose.orientation.w = w;
+    return p;
+  };
+  struct Case {
+    const char* what;
+    geometry_msgs::PoseStamped start, goal;
+    double budget;
+    std::string algorithm;
+    double w1;
+    std::uint32_t expected;
+  };
+  auto nan_position = kRoomStart;
+  nan_position.pose.position.x = nan;
+  const std::vector<Case> cases = {
+      {"start in an obstacle", pose(2.5, 4.0, 0, "map"), kRoomGoal, 2, "", 0, Status::INVALID_START},
+      {"goal in an obstacle", kRoomStart, pose(2.5, 4.0, 0, "map"), 2, "", 0, Status::INVALID_GOAL},
+      {"goal in a wall", kRoomStart, pose(5.0, 5.0, 0, "map"), 2, "", 0, Status::INVALID_GOAL},
+      {"start outside the map", pose(-5.0, 0.0, 0, "map"), kRoomGoal, 2, "", 0, Status::OUT_OF_MAP},
+      {"goal outside the map", kRoomStart, pose(0.0, 30.0, 0, "map"), 2, "", 0, Status::OUT_OF_MAP},
+      {"NaN start quaternion", with_quaternion(kRoomStart, 0, 0, nan, 1), kRoomGoal, 2, "", 0,
+       Status::INVALID_START},
+      {"zero start quaternion", with_quaternion(kRoomStart, 0, 0, 0, 0), kRoomGoal, 2, "", 0,
+       Status::INVALID_START},
+      {"non-normalised goal quaternion", kRoomStart, with_quaternion(kRoomGoal, 0, 0, 0, 2), 2,
+       "", 0, Status::INVALID_GOAL},
+      {"slightly non-normalised goal quaternion", kRoomStart,
+       with_quaternion(kRoomGoal, 0, 0, 0, 1.01), 2, "", 0, Status::INVALID_GOAL},
+      {"NaN start position", nan_position, kRoomGoal, 2, "", 0, Status::INVALID_START},
+      {"start in an unknown frame", pose(0, 0, 0, "nowhere"), kRoomGoal, 2, "", 0,
+       Status::TF_ERROR},
+      {"goal in an unknown frame", kRoomStart, pose(1, 1, 0, "nowhere"), 2, "", 0,
+       Status::TF_ERROR},
+      {"unknown algorithm", kRoomStart, kRoomGoal, 2, "dijkstra", 0, Status::INVALID_REQUEST},
+      {"weight below 1", kRoomStart, kRoomGoal, 2, "", 0.5, Status::INVALID_REQUEST},
+      {"negative time budget", kRoomStart, kRoomGoal, -1, "", 0, Status::INVALID_REQUEST},
+      {"goal in a closed pocket", kRoomStart, pose(8.0, 15.0, 0, "map"), 20, "", 0,
+       Status::NO_PATH_FOUND},
+      {"no time for A* through the maze", kMazeStart, kMazeGoal, 1e-4, "astar", 0,
+       Status::TIME_EXHAUSTED},
+      {"quaternion within 1e-3 of unit norm", kRoomStart,
+       with_quaternion(kRoomGoal, 0, 0, std::sin(M_PI / 4) * 1.0005, std::cos(M_PI / 4) * 1.0005),
+       5, "", 0, Status::SUCCESS},
+  };
+  for (const auto& c : cases) {
+    const auto res = plan(c.start, c.goal, c.budget, c.algorithm, c.w1);
+    EXPECT_EQ(res.status, c.expected) << c.what << ": " << res.message;
+    EXPECT_FALSE(res.message.empty()) << c.what;
+    if (c.expected != Status::SUCCESS) {
+      EXPECT_TRUE(res.path.poses.empty()) << c.what;
+    }
+  }
+  // The action reports the same statuses (aborted).
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal goal;
+  goal.start = kRoomStart;
+  goal.goal = pose(2.5, 4.0, 0, "map");
+  client.sendGoal(goal);
+  ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);
+  EXPECT_EQ(client.getResult()->status, PlanAnytimeResult::INVALID_GOAL);
+  // And the node still plans.
+  const auto res = plan(kRoomStart, kRoomGoal, 5.0);
+  EXPECT_EQ(res.status, Status::SUCCESS) << res.message;
+}
+
+TEST(PlannerNodelet, BadMapsAreRefusedAndTheCurrentMapKept) {
+  // Each bad map is the closed-door map broken in one way: were it accepted, the probe's start
+  // would be blocked (INVALID_START) instead of free (INVALID_GOAL).
+  ASSERT_EQ(probeMap(), Status::INVALID_GOAL);
+  std::vector<std::pair<std::string, nav_msgs::OccupancyGrid>> bad;
+  auto m = testMapWithExtraBlock();
+  m.data.pop_back();
+  bad.emplace_back("data length != width x height", m);
+  m = testMapWithExtraBlock();
+  m.info.resolution = 0.0f;
+  bad.emplace_back("zero resolution", m);
+  m = testMapWithExtraBlock();
+  m.info.resolution = std::numeric_limits<float>::quiet_NaN();
+  bad.emplace_back("NaN resolution", m);
+  m = testMapWithExtraBlock();
+  m.info.origin.position.x = std::numeric_limits<double>::infinity();
+  bad.emplace_back("infinite origin", m);
+  m = testMapWithExtraBlock();
+  m.info.width = 0;
+  m.info.height = 0;
+  m.data.clear();
+  bad.emplace_back("empty map", m);
+  m = testMapWithExtraBlock();
+  m.info.width = 2000;  // 2000 x 1000 = 2e6 cells > ~max_map_cells (1e6) of the test config
+  m.info.height = 1000;
+  m.data.assign(2000u * 1000u, 0);
+  bad.emplace_back("too many cells", m);
+  for (const auto& b : bad) {
+    g_map_pub.publish(b.second);
+    ros::WallDuration(0.5).sleep();  // a refusal takes microseconds; leave time to process it
+    EXPECT_EQ(probeMap(), Status::INVALID_GOAL) << b.first << ": the bad map was used";
+  }
+  const auto res = plan(kRoomStart, kRoomGoal, 5.0);
+  EXPECT_EQ(res.status, Status::SUCCESS) << res.message;
+  expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
+}
+
+TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal goal;
+  goal.start = kMazeStart;
+  goal.goal = kMazeGoal;
+  goal.time_budget = 3.0;
+  std::atomic<int> feedback{0};
+  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+                  [&](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
+  for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
+  ASSERT_GT(feedback.load(), 0);
+  EXPECT_FALSE(client.getState().isDone()) << "the plan should still be running";
+  // The new map closes the maze's door: the running plan must not notice.
+  g_map_pub.publish(testMapWithExtraBlock());
+  ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
+  const auto result = client.getResult();
+  ASSERT_EQ(result->status, PlanAnytimeResult::SUCCESS) << result->message;
+  expectValidPath(result->path, kMazeStart, kMazeGoal, testMap());  // the map it started on
+  expectMonotone(result->solutions);
+  expectSolutionPaths(result->solutions, kMazeStart, kMazeGoal);
+  // The next requests use the new map: the maze cannot be reached any more.
+  EXPECT_TRUE(waitForProbe(Status::INVALID_START, 20.0)) << "the new map was not adopted";
+  const auto closed = plan(kMazeStart, kMazeGoal, 5.0);
+  EXPECT_EQ(closed.status, Status::NO_PATH_FOUND) << closed.message;
+  // Then the original one again.
+  g_map_pub.publish(testMap());
+  EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the original map was not restored";
+}
+
+TEST(PlannerNodelet, ASecondRequestWaitsAndAThirdGetsBusy) {
+  // planner_nodelet.test sets ~max_queued_requests to 1.
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal goal;
+  goal.start = kMazeStart;
+  goal.goal = kMazeGoal;
+  goal.time_budget = 2.0;
+  std::atomic<int> feedback{0};
+  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+                  [&](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
+  for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
+  ASSERT_GT(feedback.load(), 0);
+  auto second = std::async(std::launch::async, [] { return plan(kRoomStart, kRoomGoal, 5.0); });
+  ros::WallDuration(0.3).sleep();  // let the second request reach the queue
+  const auto t0 = Clock::now();
+  const auto third = plan(kRoomStart, kRoomGoal, 5.0);
+  const double third_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  EXPECT_EQ(third.status, Status::BUSY) << third.message;
+  EXPECT_LT(third_s, 0.5) << "BUSY must be answered at once";
+  EXPECT_FALSE(client.getState().isDone()) << "the first request should still be running";
+  // An action goal is rejected the same way.
+  Client other("/planner/plan_anytime", true);
+  ASSERT_TRUE(other.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal room;
+  room.start = kRoomStart;
+  room.goal = kRoomGoal;
+  other.sendGoal(room);
+  ASSERT_TRUE(other.waitForResult(ros::Duration(5)));
+  EXPECT_EQ(other.getState(), actionlib::SimpleClientGoalState::REJECTED);
+  EXPECT_EQ(other.getResult()->status, PlanAnytimeResult::BUSY);
+
+  ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
+  EXPECT_EQ(client.getResult()->status, PlanAnytimeResult::SUCCESS) << client.getResult()->message;
+  const auto res = second.get();
+  EXPECT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_GT(res.request_id, client.getResult()->request_id) << "served in arrival order";
+  expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
+}
+
+}  // namespace
+}  // namespace test
+}  // namespace amha_planner
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "planner_rostest");
+  ros::NodeHandle nh;
+  amha_planner::test::g_nh = &nh;
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  ros::Subscriber solutions = nh.subscribe("/planner/solutions", 1000,
+                                            &amha_planner::test::onSolution);
+  amha_planner::test::g_map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
+  amha_planner::test::g_map_pub.publish(amha_planner::test::testMap());
+  // Wait for the planner to adopt the map (the probe answers INVALID_GOAL once it has).
+  if (!ros::service::waitForService("/planner/plan", ros::Duration(30)) ||
+      !amha_planner::test::waitForProbe(amha_planner::Plan::Response::INVALID_GOAL, 60.0)) {
+    ROS_FATAL("the planner did not come up with the test map");
+    return 1;
+  }
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}
