@@ -207,7 +207,8 @@ class DialQueue {
 }  // namespace
 
 template <class Queue>
-void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
+                                    const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
@@ -216,9 +217,10 @@ void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
   const std::uint32_t* step = kind.step.data();
   dist[goal] = 0;
   queue.push(0, goal);
-  while (!queue.empty()) {
+  for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [d, i] = queue.pop();
     if (d != dist[i]) continue;
+    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned li = level[i];
     for (std::size_t m = 0; m < nm; ++m) {
       const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + off[m]);
@@ -241,13 +243,15 @@ void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
       }
     }
   }
+  return true;
 }
 
 // The 8-connected case, unrolled: the four side neighbours are read once and serve as the
 // corner cells of the diagonal moves. Same result as the generic loop (moves in gridMoves(8)
 // order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1)).
 template <class Queue>
-void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
+                                     const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -261,9 +265,10 @@ void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
   const std::uint32_t* s_ne = step + 7 * 256;
   dist[goal] = 0;
   queue.push(0, goal);
-  while (!queue.empty()) {
+  for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [d, i] = queue.pop();
     if (d != dist[i]) continue;
+    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned c0 = level[i];
     const unsigned lw = level[i - 1], le = level[i + 1], ls = level[i - pw], ln = level[i + pw];
     auto relax = [&](std::size_t j, unsigned c, const std::uint32_t* s) {
@@ -302,24 +307,34 @@ void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
       }
     }
   }
+  return true;
 }
 
-void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* dist) const {
+bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::vector<std::uint32_t>& grid,
+                               const GridStop* stop) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
-  std::fill(dist, dist + total, kUnreachable);
+  // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
+  // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
+  grid.clear();
+  grid.reserve(total);
+  constexpr std::size_t kSlice = std::size_t{1} << 20;
+  for (std::size_t filled = 0; filled < total; filled += kSlice) {
+    if (stop != nullptr && stop->requested()) return false;
+    grid.insert(grid.end(), std::min(kSlice, total - filled), kUnreachable);
+  }
+  std::uint32_t* dist = grid.data();
   const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
-  if (kind.level[goal] == 255) return;
+  if (kind.level[goal] == 255) return true;
   const bool eight = kind.move_offsets.size() == 8;
   // Dial's queue needs every key within max_step of the current one, so it is used only when
   // no distance can reach the saturation value.
   if (kind.max_step < 4096 && static_cast<std::uint64_t>(total) * kind.max_step < kUnreachable - 1) {
     DialQueue q(kind.max_step);
-    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
-  } else {
-    detail::RadixHeap q;
-    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
+    return eight ? dijkstra8(kind, goal, dist, q, stop) : dijkstra(kind, goal, dist, q, stop);
   }
+  detail::RadixHeap q;
+  return eight ? dijkstra8(kind, goal, dist, q, stop) : dijkstra(kind, goal, dist, q, stop);
 }
 
 DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) const {
@@ -327,13 +342,13 @@ DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) con
   DistanceGrid g;
   g.width = width_;
   g.height = height_;
-  g.dist.resize(static_cast<std::size_t>(width_ + 4) * (height_ + 4));
-  run(kinds_[k], gx, gy, g.dist.data());
+  run(kinds_[k], gx, gy, g.dist);
   return g;
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, int gh, bool inadmissible,
-                                                                    unsigned threads, bool backward) const {
+                                                                    unsigned threads, bool backward,
+                                                                    const GridStop* stop) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<GoalHeuristics>();
   out->goal_x = gx;
@@ -355,16 +370,17 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
     result[k] = std::make_shared<DistanceGrid>();
     result[k]->width = width_;
     result[k]->height = height_;
-    result[k]->dist.resize(static_cast<std::size_t>(width_ + 4) * (height_ + 4));
   }
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> stopped{false};
   auto worker = [&]() {
-    for (std::size_t t; (t = next.fetch_add(1)) < tasks.size();) {
+    for (std::size_t t; !stopped && (t = next.fetch_add(1)) < tasks.size();) {
       if (tasks[t] < 0) {
-        out->coarse = coarse_->distances(gx, gy, gh, backward);
+        out->coarse = coarse_->distances(gx, gy, gh, backward, stop);
         out->coarse_lattice = coarse_.get();
-      } else {
-        run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist.data());
+        if (out->coarse.empty()) stopped = true;
+      } else if (!run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist, stop)) {
+        stopped = true;
       }
     }
   };
@@ -376,6 +392,7 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
   for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
   worker();
   for (auto& th : pool) th.join();
+  if (stopped) return nullptr;
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (wanted[k]) {
       out->grids[k] = result[alias_[k]];

@@ -138,7 +138,8 @@ struct PlanResult {
   std::string message;        ///< human-readable reason when error != kNone
   SearchResult search;        ///< status and every solution (state ids)
   std::vector<LatticeSolution> solutions;  ///< the same solutions, as poses
-  /// Seconds this call spent computing the goal's heuristic grids (0 when they were cached);
+  /// Seconds this call spent computing the goal's heuristic grids, or waiting for another call
+  /// computing them (0 when they were cached);
   /// it counts against limits.time_limit_s (added after the API freeze).
   double heuristic_seconds = 0.0;
 };
@@ -162,7 +163,9 @@ class LatticePlanner {
   QueryError checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const;
 
   /// Plans from start to goal. Query errors are returned in PlanResult (no search is run);
-  /// every improved solution is passed to on_solution as soon as it is found.
+  /// every improved solution is passed to on_solution as soon as it is found. The cancel flag
+  /// and time budget of `limits` also stop the computation of a new goal's heuristic grids
+  /// (status kCancelled / kTimeLimit, no solution; the grids are then not cached).
   PlanResult plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
                   const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});
