@@ -6,6 +6,7 @@ amha_add_gtest(amha_lattice_limits_tests
     test/lattice/test_support.cpp
     test/lattice/path_validator.cpp
     test/lattice/lattice_limits_test.cpp
+    test/lattice/lattice_regression_test.cpp
   LIBS amha_lattice)
 
 amha_add_gtest(amha_plan_queue_tests

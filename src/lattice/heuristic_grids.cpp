@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <thread>
 
 #include "amha_planner/lattice/lattice_graph.h"
@@ -47,17 +48,18 @@ double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std
   const std::size_t m = cs.size();
   const std::size_t src = index({0, 0}), dst = index(to);
   if (src == m || dst == m) return std::numeric_limits<double>::infinity();
+  // Dijkstra with a heap: a long primitive has thousands of cells.
   std::vector<double> d(m, std::numeric_limits<double>::infinity());
-  std::vector<char> done(m, 0);
+  using Item = std::pair<double, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
   d[src] = 0.0;
-  for (;;) {
-    std::size_t u = m;
-    for (std::size_t i = 0; i < m; ++i) {
-      if (!done[i] && std::isfinite(d[i]) && (u == m || d[i] < d[u])) u = i;
-    }
-    if (u == m) break;
+  queue.push({0.0, src});
+  while (!queue.empty()) {
+    const Item top = queue.top();
+    queue.pop();
+    const std::size_t u = top.second;
+    if (top.first != d[u]) continue;
     if (u == dst) return d[u];
-    done[u] = 1;
     for (const GridMove& mv : moves) {
       bool ok = true;
       for (const CellOffset& r : mv.required) {
@@ -68,7 +70,10 @@ double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std
       }
       if (!ok) continue;
       const std::size_t v = index({cs[u].dx + mv.dx, cs[u].dy + mv.dy});
-      if (v < m) d[v] = std::min(d[v], d[u] + mv.length);
+      if (v < m && d[u] + mv.length < d[v]) {
+        d[v] = d[u] + mv.length;
+        queue.push({d[v], v});
+      }
     }
   }
   return std::numeric_limits<double>::infinity();
@@ -266,7 +271,9 @@ bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
   dist[goal] = 0;
   queue.push(0, goal);
   for (std::uint32_t pops = 0; !queue.empty();) {
-    const auto [d, i] = queue.pop();
+    // Not a structured binding: clang before 16 cannot capture one in the lambda below.
+    const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
+    const std::uint32_t d = top.first, i = top.second;
     if (d != dist[i]) continue;
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned c0 = level[i];

@@ -1,0 +1,97 @@
+// Regression tests for what fuzzing found in the lattice domain (test/fuzz/*_fuzzer.cpp; each
+// crashing or hanging input is also kept in test/fuzz/corpus/<target>/regression-*).
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/map_loaders.h"
+#include "amha_planner/lattice/motion_primitives.h"
+#include "test_support.h"
+
+namespace amha {
+namespace lattice {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Two headings, a straight primitive each; `middle` are `n_middle` extra intermediate poses of
+// the first.
+std::string twoHeadings(const std::string& middle, int n_middle = 1, const std::string& res = "0.025") {
+  return "resolution_m: " + res + "\nnumberofangles: 2\ntotalnumberofprimitives: 2\n"
+         "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: 1\nintermediateposes: " +
+         std::to_string(2 + n_middle) + "\n"
+         "0 0 0\n" + middle + "\n" + res + " 0 0\n"
+         "primID: 0\nstartangle_c: 1\nendpose_c: -1 0 1\nadditionalactioncostmult: 1\nintermediateposes: 2\n"
+         "0 0 3.14159\n-" + res + " 0 3.14159\n";
+}
+
+std::string mprimError(const std::string& text) {
+  std::istringstream in(text);
+  try {
+    readMprim(in, "r.mprim");
+  } catch (const LatticeError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// mprim fuzzer, regression-long-detour: an intermediate pose 303 m (12000 cells) away from a
+// one-cell primitive was accepted, and building the planner then took minutes (the anchor's
+// walk over the primitive's cells was quadratic). Such primitives are now refused, and the
+// walk is a heap-based Dijkstra.
+TEST(MprimRegression, IntermediatePosesFarAwayAreRefused) {
+  EXPECT_NE(mprimError(twoHeadings("0.0125 303.08 0")).find("r.mprim:11: primID 0 (start heading 0): its intermediate poses are"),
+            std::string::npos);
+  EXPECT_NE(mprimError(twoHeadings("0.0125 303.08 0")).find("cells long (at most 10000)"), std::string::npos);
+  EXPECT_NE(mprimError(twoHeadings("1e300 -1e300 0")).find("cells long"), std::string::npos);
+  EXPECT_EQ(mprimError(twoHeadings("0.0125 0 0")), "(no error)");
+  // A first pose far outside int range (in cells) is refused, not undefined behaviour.
+  EXPECT_NE(mprimError("resolution_m: 1e-300\nnumberofangles: 1\ntotalnumberofprimitives: 1\nprimID: 0\nstartangle_c: 0\n"
+                       "endpose_c: 0 0 0\nadditionalactioncostmult: 1\nintermediateposes: 1\n1 0 0\n")
+                .find("is not in the start cell"),
+            std::string::npos);
+}
+
+TEST(MprimRegression, LongPrimitivesStillBuildQuickly) {
+  // An 8000-cell detour (allowed) on a small map: the planner builds in well under a second.
+  const std::string dir = test::tempDir();
+  const std::string path = dir + "/long.mprim";
+  {
+    std::ofstream f(path);
+    f << twoHeadings("0.0125 50 0\n0.0125 -50 0\n0.0125 0 0", 3);
+  }
+  auto map = test::randomMap(24, 20, 0.025, 1, 0, 0);
+  LatticeConfig c;
+  c.mprim_file = path;
+  c.robot_radius = 0.02;
+  const auto t0 = Clock::now();
+  LatticePlanner planner(map, c);
+  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+  EXPECT_LT(s, 2.0);
+  // The long primitive never fits the map; the other moves still plan.
+  SearchLimits limits;
+  limits.max_expansions = 1000;
+  const PlanResult r = planner.plan({0.2, 0.2, 3.14159}, {0.1, 0.2, 3.14159}, defaultConfig(Algorithm::kAStar), limits);
+  EXPECT_EQ(r.error, QueryError::kNone) << r.message;
+  EXPECT_FALSE(r.solutions.empty());
+}
+
+TEST(MprimRegression, WalkLengthOnThousandsOfCells) {
+  std::vector<CellOffset> cells;
+  for (int x = 0; x <= 20000; ++x) cells.push_back({x, x / 3});
+  for (int x = 0; x <= 20000; ++x) cells.push_back({x, x / 3 + 1});
+  const auto t0 = Clock::now();
+  const double w = walkLength(cells, CellOffset{20000, 6666}, gridMoves(8));
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 2.0);
+  EXPECT_NEAR(w, 6666 * std::sqrt(2.0) + (20000 - 6666), 1e-6);
+}
+
+}  // namespace
+}  // namespace lattice
+}  // namespace amha
