@@ -193,8 +193,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
   if (!grids) {
     const bool cancelled = limits.cancel != nullptr && limits.cancel->load();
     result.search.status = cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
-    result.search.elapsed_s = result.heuristic_seconds;
-    return result;
+    return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time
   }
   LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward);
   SearchLimits remaining = limits;

@@ -92,6 +92,42 @@ TEST(MprimRegression, WalkLengthOnThousandsOfCells) {
   EXPECT_NEAR(w, 6666 * std::sqrt(2.0) + (20000 - 6666), 1e-6);
 }
 
+// map_server fuzzer, regression-huge-pgm-header: a PGM header claiming 70000 x 70000 pixels
+// made OpenCV throw cv::Exception (its own pixel limit) out of loadMapServerMap, which
+// promises LatticeError. Now PNG and PNM headers are read first, so an image with more cells
+// than a map may have is refused before decoding (a small PNG can hold gigapixels), and any
+// OpenCV exception becomes a LatticeError naming the file.
+TEST(MapServerRegression, HugeImagesAreRefusedBeforeDecoding) {
+  const std::string dir = test::tempDir();
+  auto load = [&](const std::string& image_bytes) {
+    std::ofstream(dir + "/m.img", std::ios::binary) << image_bytes;
+    std::ofstream(dir + "/m.yaml") << "image: m.img\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+                                      "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    try {
+      loadMapServerMap(dir + "/m.yaml");
+    } catch (const LatticeError& e) {
+      EXPECT_EQ(e.kind(), LatticeError::Kind::kMap);
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const auto t0 = Clock::now();
+  EXPECT_NE(load("P5\n70000 70000\n255\n").find("m.img: the image is 70000 x 70000 pixels, more than the 67108864 cells"),
+            std::string::npos);
+  EXPECT_NE(load("P5 # comment\n8193\n8193 255\n").find("8193 x 8193 pixels"), std::string::npos);
+  EXPECT_NE(load("P2\n99999999999999999999 2\n255\n").find("4294967296 x 2 pixels"), std::string::npos);
+  std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0\x08\0\0\0\0", 29);
+  EXPECT_NE(load(png).find("100000 x 100000 pixels"), std::string::npos);
+  // BMP: not pre-checked; OpenCV refuses it, and its exception becomes a LatticeError.
+  auto le32 = [](std::uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; };
+  const std::string bmp = "BM" + le32(54) + le32(0) + le32(54) + le32(40) + le32(70000) + le32(70000) +
+                          std::string("\x01\0\x18\0", 4) + le32(0) + le32(0) + le32(2835) + le32(2835) + le32(0) + le32(0);
+  EXPECT_NE(load(bmp).find("m.img: cannot read the image"), std::string::npos);
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 5.0);
+  // A small image still loads.
+  EXPECT_EQ(load("P5\n2 1\n255\n\xff\xfe"), "(no error)");
+}
+
 }  // namespace
 }  // namespace lattice
 }  // namespace amha
