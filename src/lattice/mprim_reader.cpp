@@ -23,8 +23,9 @@ std::string str(double v) {
 int floorDiv(double v) { return static_cast<int>(std::max(-2e9, std::min(2e9, std::floor(v)))); }
 
 // A primitive's path may be at most this many cells long: everything built from it (its cells,
-// the footprint's sweep) grows with its length. Real primitives are a few to a few hundred.
-constexpr double kMaxPrimitiveCells = 10000.0;
+// the footprint's sweep) grows with its length. Real ones are a few cells to a few dozen (SBPL's
+// longest is 8; a 10 m turning radius at 0.05 m gives 80-cell arcs).
+constexpr double kMaxPrimitiveCells = 1000.0;
 
 }  // namespace
 
