@@ -131,6 +131,33 @@ TEST(MapServerRegression, HugeImagesAreRefusedBeforeDecoding) {
   EXPECT_EQ(load("P5\n2 1\n255\n\xff\xfe"), "(no error)");
 }
 
+// occupancy fuzzer, regression-tiny-resolution: a map with 1.8e-307 m cells was accepted; the
+// primitive generator and footprint sweeps then computed in cell units that overflowed to
+// infinity and NaN, cast NaN to int (undefined behaviour) and looped over billions of cells.
+TEST(OccupancyRegression, ResolutionsOutsideTheSaneRangeAreRefused) {
+  const std::int8_t cells[4] = {0, 0, 0, 0};
+  for (double res : {1.780373142182824e-307, 1e-4, 2e3, 1e300}) {
+    try {
+      gridMapFromOccupancy(2, 2, res, 0, 0, 0, cells, 4, OccupancyConversion());
+      ADD_FAILURE() << res;
+    } catch (const LatticeError& e) {
+      EXPECT_NE(std::string(e.what()).find("m is outside [0.001, 1000]"), std::string::npos) << e.what();
+    }
+    auto map = test::randomMap(7, 15, 0.05, 1, 0, 0);
+    map->resolution = res;
+    try {
+      LatticePlanner planner(map, LatticeConfig());
+      ADD_FAILURE() << res;
+    } catch (const LatticeError& e) {
+      EXPECT_EQ(e.kind(), LatticeError::Kind::kMap);
+      EXPECT_NE(std::string(e.what()).find("is outside [0.001, 1000]"), std::string::npos) << e.what();
+    }
+  }
+  for (double res : {kMinResolution, kMaxResolution}) {
+    EXPECT_NO_THROW(gridMapFromOccupancy(2, 2, res, 0, 0, 0, cells, 4, OccupancyConversion()));
+  }
+}
+
 }  // namespace
 }  // namespace lattice
 }  // namespace amha
