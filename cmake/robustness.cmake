@@ -12,3 +12,7 @@ amha_add_gtest(amha_lattice_limits_tests
 amha_add_gtest(amha_plan_queue_tests
   SOURCES test/ros/plan_queue_test.cpp src/ros/plan_queue.cpp
   LIBS amha_search)
+
+amha_add_gtest(amha_tiles_regression_tests
+  SOURCES test/tiles/tiles_regression_test.cpp
+  LIBS amha_tiles)

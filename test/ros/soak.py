@@ -460,10 +460,22 @@ class Soak:
                 client.cancel_goal()
                 with self.lock:
                     self.stats["cancels_sent"] += 1
-        if not client.wait_for_result(rospy.Duration(60.0)):
-            self.fail("plan_anytime %s: no result within 60 s (state %d, %d feedback)" % (kind, client.get_state(), len(feedback)))
-            client.cancel_goal()
-            return kind
+        terminal = (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.REJECTED, GoalStatus.RECALLED)
+        terminal_since = None
+        while not client.wait_for_result(rospy.Duration(1.0)):
+            now = time.time()
+            if client.get_state() in terminal:
+                # The server has finished the goal (actionlib publishes the result and the status
+                # together) but the result message has not reached this client.
+                terminal_since = terminal_since or now
+                if now - terminal_since > 5.0:
+                    self.count("answers", "result_lost_in_transport_after_terminal_status")
+                    return kind
+            elif now - t_sent > 60.0:
+                self.fail("plan_anytime %s: not finished within 60 s (state %d, %d feedback, cancel %s)" %
+                          (kind, client.get_state(), len(feedback), cancel_at is not None))
+                client.cancel_goal()
+                return kind
         t_done = time.time()
         if cancel_at is not None and running:
             with self.lock:
