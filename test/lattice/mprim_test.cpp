@@ -206,7 +206,9 @@ TEST(MprimGeneratorTest, WrittenSetsReadBack) {
       EXPECT_EQ(a.end_dy, b.end_dy);
       EXPECT_EQ(a.end_heading, b.end_heading);
       EXPECT_DOUBLE_EQ(a.cost_multiplier, b.cost_multiplier);
-      if (!s.uniform) EXPECT_NEAR(a.turning_radius, b.turning_radius, 1e-6);  // only non-uniform files carry it
+      if (!s.uniform) {  // only non-uniform files carry the turning radius
+        EXPECT_NEAR(a.turning_radius, b.turning_radius, 1e-6);
+      }
       ASSERT_EQ(a.poses.size(), b.poses.size());
       for (std::size_t k = 0; k < a.poses.size(); ++k) {
         EXPECT_NEAR(a.poses[k].x, b.poses[k].x, 1e-6);
