@@ -28,8 +28,14 @@ struct Axis {
   std::vector<double> ticks() const {
     std::vector<double> t;
     if (log) {
+      // Decades; over a narrow range (fewer than 3 decades) also 2x and 5x each decade.
+      const bool narrow = std::log10(hi) - std::log10(lo) < 3.0;
       for (double d = std::pow(10.0, std::floor(std::log10(lo))); d <= hi * 1.0001; d *= 10) {
-        if (d >= lo * 0.9999) t.push_back(d);
+        for (double m : {1.0, 2.0, 5.0}) {
+          if (m != 1.0 && !narrow) continue;
+          const double v = d * m;
+          if (v >= lo * 0.9999 && v <= hi * 1.0001) t.push_back(v);
+        }
       }
       if (t.size() < 2) t = {lo, hi};
       return t;
