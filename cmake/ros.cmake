@@ -60,9 +60,9 @@ install(FILES ${_amha_index}/packages/${PROJECT_NAME}
 install(FILES ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
         DESTINATION share/ament_index/resource_index/nodelet__pluginlib__plugin)
 
-# Unit tests of the ROS-free parts of the server.
+# Unit tests of the message conversions (the request queue's are in robustness.cmake: ROS-free).
 amha_add_gtest(amha_ros_unit_tests
-  SOURCES test/ros/plan_queue_test.cpp test/ros/conversions_test.cpp
+  SOURCES test/ros/conversions_test.cpp
   LIBS amha_ros)
 
 # rostest nodes (test/ros/*.test, run by scripts/test). Built with everything, into the devel

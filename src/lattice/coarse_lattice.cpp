@@ -66,7 +66,7 @@ CoarseLattice::CoarseLattice(const LatticeGraph& graph, int block) : graph_(grap
   }
 }
 
-std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward) const {
+std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const GridStop* stop) const {
   const std::vector<std::vector<AbstractEdge>>& edges = forward ? forward_ : reverse_;
   std::vector<std::uint32_t> dist(static_cast<std::size_t>(pw_) * ph_ * headings_, kUnreachable);
   const std::size_t goal = index(gx, gy, gh);
@@ -74,9 +74,10 @@ std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool
   detail::RadixHeap heap;
   dist[goal] = 0;
   heap.push(0, static_cast<std::uint32_t>(goal));
-  while (!heap.empty()) {
+  for (std::uint32_t pops = 0; !heap.empty();) {
     const auto [d, v] = heap.pop();
     if (d != dist[v]) continue;
+    if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return {};
     const std::size_t vb = v / headings_;
     const unsigned cv = block_cost_[vb];
     for (const AbstractEdge& e : edges[v % headings_]) {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <thread>
 
 #include "amha_planner/lattice/lattice_graph.h"
@@ -47,17 +48,18 @@ double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std
   const std::size_t m = cs.size();
   const std::size_t src = index({0, 0}), dst = index(to);
   if (src == m || dst == m) return std::numeric_limits<double>::infinity();
+  // Dijkstra with a heap: a long primitive has thousands of cells.
   std::vector<double> d(m, std::numeric_limits<double>::infinity());
-  std::vector<char> done(m, 0);
+  using Item = std::pair<double, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
   d[src] = 0.0;
-  for (;;) {
-    std::size_t u = m;
-    for (std::size_t i = 0; i < m; ++i) {
-      if (!done[i] && std::isfinite(d[i]) && (u == m || d[i] < d[u])) u = i;
-    }
-    if (u == m) break;
+  queue.push({0.0, src});
+  while (!queue.empty()) {
+    const Item top = queue.top();
+    queue.pop();
+    const std::size_t u = top.second;
+    if (top.first != d[u]) continue;
     if (u == dst) return d[u];
-    done[u] = 1;
     for (const GridMove& mv : moves) {
       bool ok = true;
       for (const CellOffset& r : mv.required) {
@@ -68,7 +70,10 @@ double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std
       }
       if (!ok) continue;
       const std::size_t v = index({cs[u].dx + mv.dx, cs[u].dy + mv.dy});
-      if (v < m) d[v] = std::min(d[v], d[u] + mv.length);
+      if (v < m && d[u] + mv.length < d[v]) {
+        d[v] = d[u] + mv.length;
+        queue.push({d[v], v});
+      }
     }
   }
   return std::numeric_limits<double>::infinity();
@@ -207,7 +212,8 @@ class DialQueue {
 }  // namespace
 
 template <class Queue>
-void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
+                                    const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
@@ -216,9 +222,10 @@ void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
   const std::uint32_t* step = kind.step.data();
   dist[goal] = 0;
   queue.push(0, goal);
-  while (!queue.empty()) {
+  for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [d, i] = queue.pop();
     if (d != dist[i]) continue;
+    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned li = level[i];
     for (std::size_t m = 0; m < nm; ++m) {
       const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + off[m]);
@@ -241,13 +248,15 @@ void HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
       }
     }
   }
+  return true;
 }
 
 // The 8-connected case, unrolled: the four side neighbours are read once and serve as the
 // corner cells of the diagonal moves. Same result as the generic loop (moves in gridMoves(8)
 // order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1)).
 template <class Queue>
-void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const {
+bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
+                                     const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -261,9 +270,12 @@ void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
   const std::uint32_t* s_ne = step + 7 * 256;
   dist[goal] = 0;
   queue.push(0, goal);
-  while (!queue.empty()) {
-    const auto [d, i] = queue.pop();
+  for (std::uint32_t pops = 0; !queue.empty();) {
+    // Not a structured binding: clang before 16 cannot capture one in the lambda below.
+    const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
+    const std::uint32_t d = top.first, i = top.second;
     if (d != dist[i]) continue;
+    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned c0 = level[i];
     const unsigned lw = level[i - 1], le = level[i + 1], ls = level[i - pw], ln = level[i + pw];
     auto relax = [&](std::size_t j, unsigned c, const std::uint32_t* s) {
@@ -302,24 +314,34 @@ void HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
       }
     }
   }
+  return true;
 }
 
-void HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::uint32_t* dist) const {
+bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::vector<std::uint32_t>& grid,
+                               const GridStop* stop) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
-  std::fill(dist, dist + total, kUnreachable);
+  // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
+  // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
+  grid.clear();
+  grid.reserve(total);
+  constexpr std::size_t kSlice = std::size_t{1} << 20;
+  for (std::size_t filled = 0; filled < total; filled += kSlice) {
+    if (stop != nullptr && stop->requested()) return false;
+    grid.insert(grid.end(), std::min(kSlice, total - filled), kUnreachable);
+  }
+  std::uint32_t* dist = grid.data();
   const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
-  if (kind.level[goal] == 255) return;
+  if (kind.level[goal] == 255) return true;
   const bool eight = kind.move_offsets.size() == 8;
   // Dial's queue needs every key within max_step of the current one, so it is used only when
   // no distance can reach the saturation value.
   if (kind.max_step < 4096 && static_cast<std::uint64_t>(total) * kind.max_step < kUnreachable - 1) {
     DialQueue q(kind.max_step);
-    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
-  } else {
-    detail::RadixHeap q;
-    if (eight) dijkstra8(kind, goal, dist, q); else dijkstra(kind, goal, dist, q);
+    return eight ? dijkstra8(kind, goal, dist, q, stop) : dijkstra(kind, goal, dist, q, stop);
   }
+  detail::RadixHeap q;
+  return eight ? dijkstra8(kind, goal, dist, q, stop) : dijkstra(kind, goal, dist, q, stop);
 }
 
 DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) const {
@@ -327,13 +349,13 @@ DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) con
   DistanceGrid g;
   g.width = width_;
   g.height = height_;
-  g.dist.resize(static_cast<std::size_t>(width_ + 4) * (height_ + 4));
-  run(kinds_[k], gx, gy, g.dist.data());
+  run(kinds_[k], gx, gy, g.dist);
   return g;
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, int gh, bool inadmissible,
-                                                                    unsigned threads, bool backward) const {
+                                                                    unsigned threads, bool backward,
+                                                                    const GridStop* stop) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<GoalHeuristics>();
   out->goal_x = gx;
@@ -355,16 +377,17 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
     result[k] = std::make_shared<DistanceGrid>();
     result[k]->width = width_;
     result[k]->height = height_;
-    result[k]->dist.resize(static_cast<std::size_t>(width_ + 4) * (height_ + 4));
   }
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> stopped{false};
   auto worker = [&]() {
-    for (std::size_t t; (t = next.fetch_add(1)) < tasks.size();) {
+    for (std::size_t t; !stopped && (t = next.fetch_add(1)) < tasks.size();) {
       if (tasks[t] < 0) {
-        out->coarse = coarse_->distances(gx, gy, gh, backward);
+        out->coarse = coarse_->distances(gx, gy, gh, backward, stop);
         out->coarse_lattice = coarse_.get();
-      } else {
-        run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist.data());
+        if (out->coarse.empty()) stopped = true;
+      } else if (!run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist, stop)) {
+        stopped = true;
       }
     }
   };
@@ -376,6 +399,7 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
   for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
   worker();
   for (auto& th : pool) th.join();
+  if (stopped) return nullptr;
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (wanted[k]) {
       out->grids[k] = result[alias_[k]];

@@ -29,6 +29,9 @@ void validateMap(const GridMap& m) {
   if (m.cost.size() != static_cast<std::size_t>(m.width) * m.height) fail(kind, "map: cost array size does not match width x height");
   if (static_cast<std::size_t>(m.width) * m.height > (std::size_t{1} << 28)) fail(kind, "map: more than 2^28 cells");
   if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) fail(kind, "map: resolution " + str(m.resolution) + " is not positive");
+  if (m.resolution < kMinResolution || m.resolution > kMaxResolution) {
+    fail(kind, "map: resolution " + str(m.resolution) + " m is outside [" + str(kMinResolution) + ", " + str(kMaxResolution) + "]");
+  }
   if (!std::isfinite(m.origin_x) || !std::isfinite(m.origin_y) || !std::isfinite(m.origin_yaw)) fail(kind, "map: origin is not finite");
 }
 

@@ -24,47 +24,71 @@ struct LatticePlanner::Impl {
   struct CacheEntry {
     int x, y, heading;
     bool inadmissible, backward;
+    std::uint64_t serial;  // tells this entry from a later one for the same goal
     std::shared_future<std::shared_ptr<const GoalHeuristics>> grids;
   };
   std::mutex mutex;
   std::list<CacheEntry> cache;  // most recently used first
+  std::uint64_t next_serial = 0;
 
   /// The goal cell's grids: from the cache, or computed now (once, even if several threads ask
-  /// at the same time). `computed_seconds` receives the time spent here computing them.
+  /// at the same time). Null when `stop` (cancel flag, deadline) stopped this call first; a
+  /// computation stopped that way is not cached, and threads that were waiting for it compute
+  /// the grids themselves. `seconds` receives the time spent here computing or waiting for them.
   std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
-                                                     bool backward, double* computed_seconds) {
-    *computed_seconds = 0.0;
-    std::promise<std::shared_ptr<const GoalHeuristics>> promise;
-    std::shared_future<std::shared_ptr<const GoalHeuristics>> future;
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      for (auto it = cache.begin(); it != cache.end(); ++it) {
-        if (it->x == x && it->y == y && it->heading == heading && it->inadmissible == inadmissible &&
-            it->backward == backward) {
-          cache.splice(cache.begin(), cache, it);
-          future = it->grids;
-          break;
+                                                     bool backward, const GridStop& stop, double* seconds) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    *seconds = 0.0;
+    for (;;) {
+      std::promise<std::shared_ptr<const GoalHeuristics>> promise;
+      std::shared_future<std::shared_ptr<const GoalHeuristics>> future;
+      std::uint64_t serial = 0;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (auto it = cache.begin(); it != cache.end(); ++it) {
+          if (it->x == x && it->y == y && it->heading == heading && it->inadmissible == inadmissible &&
+              it->backward == backward) {
+            cache.splice(cache.begin(), cache, it);
+            future = it->grids;
+            break;
+          }
+        }
+        if (!future.valid()) {
+          serial = next_serial++;
+          cache.push_front(CacheEntry{x, y, heading, inadmissible, backward, serial, promise.get_future().share()});
+          while (cache.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) cache.pop_back();
         }
       }
-      if (!future.valid()) {
-        cache.push_front(CacheEntry{x, y, heading, inadmissible, backward, promise.get_future().share()});
-        while (cache.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) cache.pop_back();
+      auto forget = [&] {
+        std::lock_guard<std::mutex> lock(mutex);
+        cache.remove_if([&](const CacheEntry& e) { return e.serial == serial; });
+      };
+      if (future.valid()) {
+        // Another call computes them: wait, but not beyond our own cancel or deadline.
+        if (future.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+          while (future.wait_for(std::chrono::milliseconds(2)) != std::future_status::ready) {
+            if (stop.requested()) {
+              *seconds = since();
+              return nullptr;
+            }
+          }
+          *seconds = since();
+        }
+        if (auto grids = future.get()) return grids;
+        continue;  // that call was stopped: compute them here
       }
-    }
-    if (future.valid()) return future.get();
-    const auto t0 = std::chrono::steady_clock::now();
-    try {
-      auto grids = builder->compute(x, y, heading, inadmissible, 0, backward);
-      promise.set_value(grids);
-      *computed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      return grids;
-    } catch (...) {
-      promise.set_exception(std::current_exception());
-      std::lock_guard<std::mutex> lock(mutex);
-      cache.remove_if([&](const CacheEntry& e) {
-        return e.x == x && e.y == y && e.heading == heading && e.inadmissible == inadmissible && e.backward == backward;
-      });
-      throw;
+      try {
+        auto grids = builder->compute(x, y, heading, inadmissible, 0, backward, &stop);
+        if (!grids) forget();
+        promise.set_value(grids);
+        *seconds = since();
+        return grids;
+      } catch (...) {
+        promise.set_exception(std::current_exception());
+        forget();
+        throw;
+      }
     }
   }
 
@@ -157,7 +181,20 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
   // Backward search runs from the goal to the start, with heuristics measured from the start.
   const bool backward = g.config().backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
-  auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, &result.heuristic_seconds);
+  // The grids honour the cancel flag and the time budget too (seconds on a big map).
+  GridStop stop;
+  stop.cancel = limits.cancel;
+  if (limits.time_limit_s < 1e9) {
+    stop.deadline = std::chrono::steady_clock::now() +
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
+  }
+  auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, stop, &result.heuristic_seconds);
+  if (!grids) {
+    const bool cancelled = limits.cancel != nullptr && limits.cancel->load();
+    result.search.status = cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
+    return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time
+  }
   LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward);
   SearchLimits remaining = limits;
   remaining.time_limit_s = std::max(0.0, limits.time_limit_s - result.heuristic_seconds);

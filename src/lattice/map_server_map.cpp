@@ -1,7 +1,12 @@
 // map_server's YAML + image maps, with map_server's exact semantics (see map_loaders.h).
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <sstream>
 
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <yaml-cpp/yaml.h>
 
@@ -30,6 +35,52 @@ double number(const YAML::Node& doc, const char* key, const std::string& file) {
   } catch (const YAML::Exception&) {
     fail(file, std::string("'") + key + "' is not a number", n.Mark().line);
   }
+}
+
+// The most cells gridMapFromOccupancy accepts by default (loadMapServerMap uses it).
+constexpr std::uint64_t kMaxCells = std::uint64_t{1} << 26;
+
+// Width and height from a PNG or PNM (PBM/PGM/PPM) header, without decoding: a small PNG can
+// hold gigapixels, so a huge image is refused before OpenCV allocates it. False for other
+// formats (OpenCV's own limit, 2^30 pixels, and the check after decoding apply to them).
+bool headerSize(const std::string& path, std::uint64_t* w, std::uint64_t* h) {
+  std::ifstream f(path, std::ios::binary);
+  char b[512];
+  f.read(b, sizeof b);
+  const std::size_t n = static_cast<std::size_t>(f.gcount());
+  auto be32 = [&](std::size_t i) {
+    std::uint64_t v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(b[i + k]);
+    return v;
+  };
+  if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0) {
+    *w = be32(16);
+    *h = be32(20);
+    return true;
+  }
+  if (n < 3 || b[0] != 'P' || b[1] < '1' || b[1] > '6') return false;
+  std::uint64_t v[2] = {0, 0};
+  int found = 0;
+  for (std::size_t i = 2; i < n && found < 2;) {
+    const unsigned char c = static_cast<unsigned char>(b[i]);
+    if (c == '#') {
+      while (i < n && b[i] != '\n') ++i;
+    } else if (std::isspace(c)) {
+      ++i;
+    } else if (std::isdigit(c)) {
+      std::uint64_t x = 0;
+      for (; i < n && std::isdigit(static_cast<unsigned char>(b[i])); ++i) {
+        x = std::min<std::uint64_t>(x * 10 + (b[i] - '0'), std::uint64_t{1} << 32);
+      }
+      v[found++] = x;
+    } else {
+      return false;
+    }
+  }
+  if (found < 2) return false;
+  *w = v[0];
+  *h = v[1];
+  return true;
 }
 
 std::string directoryOf(const std::string& path) {
@@ -117,8 +168,25 @@ MapServerYaml readMapServerYaml(const std::string& file) {
 }
 
 std::vector<std::int8_t> mapServerOccupancy(const MapServerYaml& y, int* width, int* height) {
-  cv::Mat img = cv::imread(y.image, cv::IMREAD_UNCHANGED);
+  auto too_big = [&](std::uint64_t w, std::uint64_t h) {
+    std::ostringstream m;
+    m << "the image is " << w << " x " << h << " pixels, more than the " << kMaxCells << " cells a map may have";
+    fail(y.image, m.str());
+  };
+  std::uint64_t header_w = 0, header_h = 0;
+  if (headerSize(y.image, &header_w, &header_h) && header_w * header_h > kMaxCells) too_big(header_w, header_h);
+  cv::Mat img;
+  try {
+    img = cv::imread(y.image, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {  // e.g. OpenCV's own size limit
+    fail(y.image, std::string("cannot read the image: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    fail(y.image, "not enough memory to decode the image");
+  }
   if (img.empty()) fail(y.image, "cannot read the image (missing file or unsupported format)");
+  if (static_cast<std::uint64_t>(img.cols) * static_cast<std::uint64_t>(img.rows) > kMaxCells) {
+    too_big(static_cast<std::uint64_t>(img.cols), static_cast<std::uint64_t>(img.rows));
+  }
   if (img.depth() == CV_16U) img.convertTo(img, CV_8U, 1.0 / 257.0);
   if (img.depth() != CV_8U) fail(y.image, "unsupported pixel depth (need 8 or 16 bits)");
   const int channels = img.channels();

@@ -19,7 +19,13 @@ std::string str(double v) {
   return s.str();
 }
 
-int floorDiv(double v) { return static_cast<int>(std::floor(v)); }
+// floor(v) as an int, clamped (a pose far outside int range would otherwise be undefined).
+int floorDiv(double v) { return static_cast<int>(std::max(-2e9, std::min(2e9, std::floor(v)))); }
+
+// A primitive's path may be at most this many cells long: everything built from it (its cells,
+// the footprint's sweep) grows with its length. Real ones are a few cells to a few dozen (SBPL's
+// longest is 8; a 10 m turning radius at 0.05 m gives 80-cell arcs).
+constexpr double kMaxPrimitiveCells = 1000.0;
 
 }  // namespace
 
@@ -101,6 +107,15 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
       q.theta = t.number("an intermediate theta");
     }
     const int pose_line = t.tokenLine();
+    double length = 0.0;
+    for (long i = 1; i < count; ++i) {
+      length += std::hypot(p.poses[i].x - p.poses[i - 1].x, p.poses[i].y - p.poses[i - 1].y);
+    }
+    if (!(length / res <= kMaxPrimitiveCells)) {
+      t.failAt(pose_line, "primID " + std::to_string(p.id) + " (start heading " + std::to_string(p.start_heading) +
+                              "): its intermediate poses are " + str(length / res) + " cells long (at most " +
+                              str(kMaxPrimitiveCells) + ")");
+    }
     // The first pose is the start cell's centre at the start heading.
     const Pose2D& first = p.poses.front();
     if (floorDiv((0.5 * res + first.x) / res) != 0 || floorDiv((0.5 * res + first.y) / res) != 0 ||

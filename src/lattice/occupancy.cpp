@@ -38,6 +38,11 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
     m << "resolution " << resolution << " is not positive and finite";
     fail(m.str());
   }
+  if (resolution < kMinResolution || resolution > kMaxResolution) {
+    std::ostringstream m;
+    m << "resolution " << resolution << " m is outside [" << kMinResolution << ", " << kMaxResolution << "]";
+    fail(m.str());
+  }
   if (!std::isfinite(origin_x) || !std::isfinite(origin_y) || !std::isfinite(origin_yaw)) {
     fail("origin is not finite");
   }

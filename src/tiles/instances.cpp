@@ -14,6 +14,8 @@ namespace tiles {
 
 namespace {
 
+constexpr long kMaxOptimalLength = 1000000;
+
 [[noreturn]] void fail(const std::string& where, int line, const std::string& what) {
   throw InstanceError(where + ":" + std::to_string(line) + ": " + what);
 }
@@ -61,8 +63,10 @@ std::vector<Instance> parseInstances(const std::string& text, const std::string&
     Instance inst;
     inst.id = tok[0];
     long optimal = 0, md = 0;
-    if (!parseInt(tok[1], &optimal) || optimal < -1) {
-      fail(name, line_no, "optimal length '" + tok[1] + "' is not an integer >= -1");
+    // Bounded so that it fits the int it is stored in (the longest optimal 9x9 solution is far
+    // below the bound).
+    if (!parseInt(tok[1], &optimal) || optimal < -1 || optimal > kMaxOptimalLength) {
+      fail(name, line_no, "optimal length '" + tok[1] + "' is not an integer in -1.." + std::to_string(kMaxOptimalLength));
     }
     if (!parseInt(tok[2], &md) || md < -1) {
       fail(name, line_no, "md '" + tok[2] + "' is not an integer >= -1");

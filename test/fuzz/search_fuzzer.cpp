@@ -1,6 +1,12 @@
 // Fuzzes the search core: a graph, costs and arbitrary inadmissible heuristics (including
 // infinite ones) from the input bytes; every algorithm's every solution must be a valid path
-// within its certified bound of the Dijkstra optimum, and unsolvable inputs must end cleanly.
+// within its certified bound of the Dijkstra optimum, solution costs must never increase, and
+// unsolvable inputs must end cleanly.
+//
+// Known issue (reported, in src/search/ana_star.cpp, which this branch does not own): ANA* can
+// report a solution costlier than the previous one (it improves on g(goal), but reports the
+// parent chain's true cost, which may be below g(goal)). Its cost check runs only with
+// AMHA_FUZZ_STRICT_ANA=1; test/fuzz/corpus/search/known-ana-cost-increase reproduces it.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +30,7 @@ struct Bytes {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace amha;
+  static const bool strict_ana = std::getenv("AMHA_FUZZ_STRICT_ANA") != nullptr;
   Bytes in{data, size};
   testing::ExplicitGraph g;
   const int n = 2 + in.next() % 40;
@@ -59,12 +66,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     if (!r.hasSolution()) std::abort();
+    Cost previous = kInfiniteCost;
     for (const Solution& s : r.solutions) {
       const std::string err = testing::validateSolution(g, s, optimal);
       if (!err.empty()) {
         std::fprintf(stderr, "%s: %s\n", algorithmName(a), err.c_str());
         std::abort();
       }
+      if (s.cost > previous && (a != Algorithm::kAnaStar || strict_ana)) {
+        std::fprintf(stderr, "%s: solution cost %lld after %lld\n", algorithmName(a), static_cast<long long>(s.cost),
+                     static_cast<long long>(previous));
+        std::abort();
+      }
+      previous = s.cost;
     }
     if (r.status == SearchStatus::kProvenOptimal && r.best().cost != optimal) std::abort();
   }

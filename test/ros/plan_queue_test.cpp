@@ -1,5 +1,6 @@
 // The server's request policy: one job at a time, FIFO, at most max_waiting waiting, the rest
-// refused; queued jobs still run at shutdown (their owners cancel them first).
+// refused; queued jobs still run at shutdown (their owners cancel them first). ROS-free: built
+// without ROS too, and the suite's name (Concurrent...) puts it in the ThreadSanitizer pass.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -22,7 +23,7 @@ struct Gate {
   std::shared_future<void> opened = open.get_future().share();
 };
 
-TEST(PlanQueue, RunsOneAtATimeInOrderAndRefusesBeyondTheBound) {
+TEST(ConcurrentPlanQueue, RunsOneAtATimeInOrderAndRefusesBeyondTheBound) {
   PlanQueue queue(2);
   Gate gate;
   std::mutex m;
@@ -62,7 +63,7 @@ TEST(PlanQueue, RunsOneAtATimeInOrderAndRefusesBeyondTheBound) {
   EXPECT_EQ(max_concurrent.load(), 1);
 }
 
-TEST(PlanQueue, ZeroWaitingMeansRejectWhileBusy) {
+TEST(ConcurrentPlanQueue, ZeroWaitingMeansRejectWhileBusy) {
   PlanQueue queue(0);
   Gate gate;
   std::atomic<bool> ran{false};
@@ -76,7 +77,7 @@ TEST(PlanQueue, ZeroWaitingMeansRejectWhileBusy) {
   EXPECT_TRUE(ran);
 }
 
-TEST(PlanQueue, DestructionRunsWaitingJobs) {
+TEST(ConcurrentPlanQueue, DestructionRunsWaitingJobs) {
   std::atomic<int> ran{0};
   {
     PlanQueue queue(3);
@@ -86,6 +87,42 @@ TEST(PlanQueue, DestructionRunsWaitingJobs) {
     }));
   }
   EXPECT_EQ(ran.load(), 4) << "every accepted job gets its answer";
+}
+
+// Many threads submitting at once (as the service, action and make_plan callbacks do): every
+// submission is either accepted and run exactly once or refused, never two jobs run at once,
+// and never more than max_waiting wait.
+TEST(ConcurrentPlanQueue, ManySubmittersAtOnce) {
+  constexpr int kThreads = 6, kPerThread = 200;
+  constexpr std::size_t kMaxWaiting = 2;
+  std::atomic<int> accepted{0}, ran{0}, running{0}, overlap{0};
+  std::atomic<std::size_t> max_waiting_seen{0};
+  {
+    PlanQueue queue(kMaxWaiting);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+      threads.emplace_back([&] {
+        for (int i = 0; i < kPerThread; ++i) {
+          const bool ok = queue.submit([&] {
+            if (++running > 1) ++overlap;
+            const std::size_t w = queue.waiting();
+            std::size_t seen = max_waiting_seen.load();
+            while (w > seen && !max_waiting_seen.compare_exchange_weak(seen, w)) {}
+            std::this_thread::yield();
+            --running;
+            ++ran;
+          });
+          if (ok) ++accepted;
+          if (i % 16 == 0) std::this_thread::sleep_for(100us);
+        }
+      });
+    }
+    for (auto& t : threads) t.join();
+  }  // the destructor runs what is still waiting
+  EXPECT_EQ(ran.load(), accepted.load());
+  EXPECT_GT(accepted.load(), 0);
+  EXPECT_EQ(overlap.load(), 0);
+  EXPECT_LE(max_waiting_seen.load(), kMaxWaiting);
 }
 
 }  // namespace

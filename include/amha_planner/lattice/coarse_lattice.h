@@ -16,6 +16,7 @@ namespace amha {
 namespace lattice {
 
 class LatticeGraph;
+struct GridStop;
 
 class CoarseLattice {
  public:
@@ -25,7 +26,9 @@ class CoarseLattice {
   int block() const { return k_; }
   /// Distances (cost units) of every abstract state to the goal's (forward = false), or from
   /// the start's (forward = true, for backward search), kUnreachable where there is no path.
-  std::vector<std::uint32_t> distances(int x, int y, int heading, bool forward = false) const;
+  /// Empty if `stop` asked to stop first.
+  std::vector<std::uint32_t> distances(int x, int y, int heading, bool forward = false,
+                                       const GridStop* stop = nullptr) const;
   /// Index of the abstract state of lattice state (x, y, heading) in distancesTo's result.
   std::size_t index(int x, int y, int heading) const {
     return (static_cast<std::size_t>(y / k_ + pad_) * pw_ + (x / k_ + pad_)) * headings_ + heading;

@@ -8,6 +8,8 @@
 // grids are independent and computed in parallel threads.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -70,6 +72,18 @@ struct GoalHeuristics {
   std::size_t bytes() const;
 };
 
+/// Stops a grid computation early: LatticePlanner::plan passes the search's cancel flag and
+/// deadline, so that a cancel or the time budget is honoured while a big map's grids are
+/// computed (seconds on 4000 x 4000 cells). Checked every few thousand cells.
+struct GridStop {
+  const std::atomic<bool>* cancel = nullptr;
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  bool requested() const {
+    return (cancel != nullptr && cancel->load(std::memory_order_relaxed)) ||
+           (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline);
+  }
+};
+
 /// Per-map data the grids need (levels with blocked cells, step-cost tables), built once.
 class HeuristicGridBuilder {
  public:
@@ -77,8 +91,10 @@ class HeuristicGridBuilder {
   /// Computes the anchor's tables and, if `inadmissible`, the inadmissible grids the
   /// configuration asks for, in parallel (up to `threads`, 0 = all hardware threads).
   /// `backward`: the tables are for a backward search, i.e. distances from (x, y, heading).
+  /// Returns null if `stop` asked to stop before the tables were complete.
   std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading, bool inadmissible = true,
-                                                unsigned threads = 0, bool backward = false) const;
+                                                unsigned threads = 0, bool backward = false,
+                                                const GridStop* stop = nullptr) const;
   /// One grid alone (for tests and timing).
   DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
   bool needed(GridKind kind) const { return needed_[static_cast<int>(kind)]; }
@@ -95,11 +111,12 @@ class HeuristicGridBuilder {
   static constexpr int kMaxRequired = 4;
   void buildKind(int k, int connectivity, double units_per_cell, const std::vector<std::uint8_t>* mask,
                  std::uint8_t max_cost_class);
-  void run(const Kind& kind, int goal_x, int goal_y, std::uint32_t* dist) const;
+  // These return false when `stop` asked to stop (the grid is then incomplete).
+  bool run(const Kind& kind, int goal_x, int goal_y, std::vector<std::uint32_t>& grid, const GridStop* stop = nullptr) const;
   template <class Queue>
-  void dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const;
+  bool dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
   template <class Queue>
-  void dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue) const;
+  bool dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;

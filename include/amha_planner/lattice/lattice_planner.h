@@ -23,6 +23,11 @@ constexpr std::uint8_t kInscribedCost = 253;
 constexpr std::uint8_t kLethalCost = 254;
 constexpr std::uint8_t kUnknownCost = 255;
 
+/// Cell sizes (metres) a map may have: much finer or coarser grids overflow the geometry's cell
+/// units (a primitive or footprint in cells becomes infinite or NaN).
+constexpr double kMinResolution = 1e-3;
+constexpr double kMaxResolution = 1e3;
+
 /// A 2-D map. Cell (0, 0) is the bottom-left cell (nav_msgs/OccupancyGrid order: row-major,
 /// x fastest, row 0 at the origin); (origin_x, origin_y) is that cell's outer corner in the map
 /// frame, and the grid is rotated by origin_yaw about it.
@@ -55,7 +60,8 @@ class LatticeError : public std::runtime_error {
 
 /// Builds a GridMap from OccupancyGrid-style data. Throws LatticeError (kMap) for sizes that are
 /// not positive, data whose length is not width * height, a resolution that is not positive
-/// and finite, a non-finite origin, or a map larger than `max_cells`.
+/// and finite or outside [kMinResolution, kMaxResolution], a non-finite origin, or a map larger
+/// than `max_cells`.
 GridMap gridMapFromOccupancy(int width, int height, double resolution, double origin_x,
                              double origin_y, double origin_yaw, const std::int8_t* data,
                              std::size_t data_size, const OccupancyConversion& conversion,
@@ -138,7 +144,8 @@ struct PlanResult {
   std::string message;        ///< human-readable reason when error != kNone
   SearchResult search;        ///< status and every solution (state ids)
   std::vector<LatticeSolution> solutions;  ///< the same solutions, as poses
-  /// Seconds this call spent computing the goal's heuristic grids (0 when they were cached);
+  /// Seconds this call spent computing the goal's heuristic grids, or waiting for another call
+  /// computing them (0 when they were cached);
   /// it counts against limits.time_limit_s (added after the API freeze).
   double heuristic_seconds = 0.0;
 };
@@ -162,7 +169,9 @@ class LatticePlanner {
   QueryError checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const;
 
   /// Plans from start to goal. Query errors are returned in PlanResult (no search is run);
-  /// every improved solution is passed to on_solution as soon as it is found.
+  /// every improved solution is passed to on_solution as soon as it is found. The cancel flag
+  /// and time budget of `limits` also stop the computation of a new goal's heuristic grids
+  /// (status kCancelled / kTimeLimit, no solution; the grids are then not cached).
   PlanResult plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
                   const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});

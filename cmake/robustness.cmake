@@ -1,0 +1,18 @@
+# Robustness tests: the lattice's limits (big maps, memory caps, huge or negative sizes, a
+# cancel during the heuristic grids), regressions found by fuzzing, and the server's request
+# queue, which is ROS-free: it is built without ROS too, so the ThreadSanitizer pass runs it.
+amha_add_gtest(amha_lattice_limits_tests
+  SOURCES
+    test/lattice/test_support.cpp
+    test/lattice/path_validator.cpp
+    test/lattice/lattice_limits_test.cpp
+    test/lattice/lattice_regression_test.cpp
+  LIBS amha_lattice)
+
+amha_add_gtest(amha_plan_queue_tests
+  SOURCES test/ros/plan_queue_test.cpp src/ros/plan_queue.cpp
+  LIBS amha_search)
+
+amha_add_gtest(amha_tiles_regression_tests
+  SOURCES test/tiles/tiles_regression_test.cpp
+  LIBS amha_tiles)

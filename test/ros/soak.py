@@ -1,0 +1,688 @@
+#!/usr/bin/python3
+"""Soak test of the planning server (run by scripts/soak, which starts the master and the nodelet).
+
+For a bounded time (and at most --max-requests requests) it fires random requests, valid and
+invalid, at ~plan, ~plan_anytime (with random cancels) and ~make_plan from several threads,
+while publishing random map updates (good and malformed). Every answer must be a valid path
+within its bounds or a clean error status; the node must stay alive; its memory must not grow.
+
+A path is checked independently of the planner: in the global frame, starting at the start and
+ending at the goal (within a cell and half a heading bin), no jump longer than 1.5 cells, the
+robot's circle touching no obstacle, unknown or off-map cell on one of the maps that were in use
+while the request ran, cost >= straight-line distance; along the solutions costs, bounds and
+certified bounds never increase and 1 <= certified <= bound.
+
+Writes a JSON summary (--json) and prints one; exits 1 on any failure."""
+import argparse
+import json
+import math
+import random
+import sys
+import threading
+import time
+import traceback
+import xmlrpc.client
+
+import actionlib
+import rosgraph
+import rospy
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import OccupancyGrid
+from nav_msgs.srv import GetPlan, GetPlanRequest
+
+from amha_planner.msg import PlanAnytimeAction, PlanAnytimeGoal
+from amha_planner.srv import Plan, PlanRequest, PlanResponse
+
+NS = "/amha_planner"
+MANAGER = "/amha_planner_manager"
+ROBOT_RADIUS = 0.2         # the planner's robot_radius (config/planner.yaml)
+LETHAL = 65                # lethal_threshold; unknown (-1) is an obstacle
+BASE_LINK = (17.0, 55.0, -math.pi / 2)  # soak.launch's map -> base_link
+ODOM = (2.0, 3.0, 0.3)                  # soak.launch's map -> odom
+HALF_BIN = math.atan(0.5) / 2 + 1e-3    # 16 generated headings
+S = PlanResponse
+STATUS_NAMES = {getattr(S, n): n for n in dir(S) if n.isupper() and isinstance(getattr(S, n), int)}
+CLEAN = set(STATUS_NAMES) - {S.INTERNAL_ERROR}
+
+
+def yaw_quaternion(yaw):
+    return (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+
+
+def pose_stamped(frame, x, y, q):
+    p = PoseStamped()
+    p.header.frame_id = frame
+    p.pose.position.x, p.pose.position.y = x, y
+    p.pose.orientation.x, p.pose.orientation.y, p.pose.orientation.z, p.pose.orientation.w = q
+    return p
+
+
+def angle_diff(a, b):
+    return abs(math.remainder(a - b, 2 * math.pi))
+
+
+class Grid:
+    """An OccupancyGrid the soak test published (or captured), for the independent checks."""
+
+    def __init__(self, msg, name):
+        self.msg, self.name = msg, name
+        self.w, self.h = msg.info.width, msg.info.height
+        self.res = msg.info.resolution
+        self.ox, self.oy = msg.info.origin.position.x, msg.info.origin.position.y
+        self.blocked = bytes(1 if (v >= LETHAL or v < 0) else 0 for v in msg.data)
+        self.clear_cells = {}  # (i, j) -> True if a circle anywhere in the cell is surely free
+
+    def is_blocked(self, i, j):
+        return i < 0 or j < 0 or i >= self.w or j >= self.h or self.blocked[j * self.w + i]
+
+    def circle_free(self, x, y, r):
+        """No blocked cell square meets the disc of radius r about (x, y) (map frame, yaw 0)."""
+        gx, gy = (x - self.ox) / self.res, (y - self.oy) / self.res
+        rc = r / self.res - 1e-6
+        # Fast path (memoised per cell): every cell square within rc of this cell's square is
+        # free, so the disc is free wherever in the cell its centre is.
+        ci, cj = int(math.floor(gx)), int(math.floor(gy))
+        key = (ci, cj, r)
+        clear = self.clear_cells.get(key)
+        if clear is None:
+            reach = int(math.ceil(rc)) + 1
+            clear = True
+            for dj in range(-reach, reach + 1):
+                for di in range(-reach, reach + 1):
+                    ex, ey = max(abs(di) - 1, 0), max(abs(dj) - 1, 0)
+                    if ex * ex + ey * ey < rc * rc and self.is_blocked(ci + di, cj + dj):
+                        clear = False
+                        break
+                if not clear:
+                    break
+            self.clear_cells[key] = clear
+        if clear:
+            return True
+        # Exact test against the nearby blocked squares.
+        for j in range(int(math.floor(gy - rc)), int(math.floor(gy + rc)) + 1):
+            for i in range(int(math.floor(gx - rc)), int(math.floor(gx + rc)) + 1):
+                if not self.is_blocked(i, j):
+                    continue
+                dx = max(i - gx, 0.0, gx - (i + 1))
+                dy = max(j - gy, 0.0, gy - (j + 1))
+                if dx * dx + dy * dy < rc * rc:
+                    return False
+        return True
+
+    def random_free_pose(self, rng):
+        for _ in range(2000):
+            i, j = rng.randrange(self.w), rng.randrange(self.h)
+            x, y = self.ox + (i + 0.5) * self.res, self.oy + (j + 0.5) * self.res
+            if self.circle_free(x, y, ROBOT_RADIUS + 1.5 * self.res):
+                return x, y, rng.uniform(-math.pi, math.pi)
+        return None
+
+
+def synthetic_map(rng, seq):
+    """A random room map: walls around, random blocks, random origin; 0.05 or 0.1 m cells."""
+    res = rng.choice([0.05, 0.1])
+    w, h = rng.randint(60, 300), rng.randint(60, 300)
+    data = [0] * (w * h)
+    for i in range(w):
+        data[i] = data[(h - 1) * w + i] = 100
+    for j in range(h):
+        data[j * w] = data[j * w + w - 1] = 100
+    for _ in range(rng.randint(0, 25)):
+        x0, y0 = rng.randrange(w), rng.randrange(h)
+        bw, bh = rng.randint(1, max(1, w // 5)), rng.randint(1, max(1, h // 5))
+        v = rng.choice([100, 100, -1, 50])
+        for y in range(y0, min(h, y0 + bh)):
+            for x in range(x0, min(w, x0 + bw)):
+                data[y * w + x] = v
+    m = OccupancyGrid()
+    m.header.frame_id = "map"
+    m.header.seq = seq
+    m.info.width, m.info.height, m.info.resolution = w, h, res
+    m.info.origin.position.x, m.info.origin.position.y = rng.uniform(-5, 5), rng.uniform(-5, 5)
+    m.info.origin.orientation.w = 1.0
+    m.data = data
+    return m
+
+
+def malformed_map(rng, good):
+    """A copy of `good` with one defect the server must refuse (it keeps the previous map)."""
+    m = OccupancyGrid()
+    m.header = good.header
+    m.info.width, m.info.height, m.info.resolution = good.info.width, good.info.height, good.info.resolution
+    m.info.origin.orientation.w = 1.0
+    m.data = good.data
+    kind = rng.choice(["short_data", "long_data", "zero_resolution", "negative_resolution", "nan_resolution",
+                       "inf_resolution", "zero_width", "huge_width", "huge_both", "nan_origin", "tilted_origin",
+                       "zero_quaternion", "too_many_cells", "empty"])
+    if kind == "short_data":
+        m.data = good.data[:-1]
+    elif kind == "long_data":
+        m.data = list(good.data) + [0]
+    elif kind == "zero_resolution":
+        m.info.resolution = 0.0
+    elif kind == "negative_resolution":
+        m.info.resolution = -0.05
+    elif kind == "nan_resolution":
+        m.info.resolution = float("nan")
+    elif kind == "inf_resolution":
+        m.info.resolution = float("inf")
+    elif kind == "zero_width":
+        m.info.width = 0
+    elif kind == "huge_width":
+        m.info.width = 4294967295
+    elif kind == "huge_both":
+        m.info.width, m.info.height, m.data = 65536, 65536, []
+    elif kind == "nan_origin":
+        m.info.origin.position.x = float("nan")
+    elif kind == "tilted_origin":
+        m.info.origin.orientation.x, m.info.origin.orientation.w = math.sin(0.2), math.cos(0.2)
+    elif kind == "zero_quaternion":
+        m.info.origin.orientation.w = 0.0
+    elif kind == "too_many_cells":  # soak.launch sets max_map_cells to 2^22
+        m.info.width, m.info.height, m.data = 2049, 2048, [0] * (2049 * 2048)
+    elif kind == "empty":
+        m.info.width = m.info.height = 0
+        m.data = []
+    return m, kind
+
+
+class Soak:
+    def __init__(self, args):
+        self.args = args
+        self.rng = random.Random(args.seed)
+        self.lock = threading.Lock()
+        self.stats = {"requests": 0, "by_interface": {}, "by_kind": {}, "answers": {}, "answers_by_kind": {},
+                      "paths_checked": 0, "solutions_checked": 0, "cancels_sent": 0, "cancel_latency_running_s": [],
+                      "map_updates": {"valid": 0, "malformed": {}}, "failures": [], "rss_kb": [], "checkpoints": []}
+        self.maps = []          # (time published, Grid) of every valid map, in order
+        self.current = None     # the last valid Grid published
+        self.stop = threading.Event()
+        self.pause = threading.Event()
+        self.in_flight = 0
+        self.node_pid = None
+        self.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
+
+    # ---- bookkeeping
+    def count(self, key, sub, n=1):
+        with self.lock:
+            d = self.stats[key]
+            d[sub] = d.get(sub, 0) + n
+
+    def fail(self, what):
+        with self.lock:
+            self.stats["failures"].append(what)
+            n = len(self.stats["failures"])
+        if n <= 30:
+            rospy.logerr("soak FAILURE: %s", what)
+
+    def candidate_maps(self, t_sent, t_done):
+        """Valid maps that may have been in use between t_sent and t_done."""
+        with self.lock:
+            maps = list(self.maps)
+        before = [g for (t, g) in maps if t <= t_sent]
+        during = [g for (t, g) in maps if t_sent < t <= t_done + 0.5]
+        return (before[-1:] if before else []) + during
+
+    # ---- the node
+    def find_node_pid(self):
+        master = rosgraph.Master("/soak")
+        uri = master.lookupNode(MANAGER)
+        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid("/soak")
+        return pid if code == 1 else None
+
+    def status_kb(self, key):
+        try:
+            with open("/proc/%d/status" % self.node_pid) as f:
+                for line in f:
+                    if line.startswith(key + ":"):
+                        return int(line.split()[1])
+        except OSError:
+            return None
+        return None
+
+    def monitor(self):
+        while not self.stop.is_set():
+            rss = self.status_kb("VmRSS")
+            if rss is None:
+                self.fail("the planner node (pid %d) is gone" % self.node_pid)
+                self.stop.set()
+                return
+            with self.lock:
+                self.stats["rss_kb"].append((round(time.time() - self.t0, 1), rss))
+            self.stop.wait(2.0)
+
+    # ---- requests
+    def make_request(self, rng):
+        """(kind, PlanRequest fields, expected statuses or None for any clean one, start, goal)."""
+        grid = self.current
+        kind = rng.choices(
+            ["valid", "valid_robot_start", "valid_odom_goal", "random_pose", "far_out", "nan_position",
+             "nan_quaternion", "zero_quaternion", "unnormalised_quaternion", "unknown_frame", "bad_algorithm",
+             "bad_weight", "bad_budget"],
+            weights=[30, 6, 6, 12, 4, 3, 3, 3, 3, 3, 3, 3, 3])[0]
+        a = grid.random_free_pose(rng) or (0.0, 0.0, 0.0)
+        b = grid.random_free_pose(rng) or (0.0, 0.0, 0.0)
+        start = pose_stamped("map", a[0], a[1], yaw_quaternion(a[2]))
+        goal = pose_stamped("map", b[0], b[1], yaw_quaternion(b[2]))
+        start_map, goal_map = a, b
+        req = {"start": start, "goal": goal, "time_budget": rng.choice([0.0, 0.05, 0.2, 0.5, 1.0, 2.0]),
+               "algorithm": rng.choice(["", "", "amha", "mha", "ara", "ana", "wastar", "astar"]),
+               "w1": rng.choice([0.0, 0.0, 1.0, 1.5, 3.0, 10.0]), "w2": rng.choice([0.0, 0.0, 1.0, 2.0, 5.0])}
+        expected = None  # any clean status
+        if kind == "valid_robot_start":
+            start.header.frame_id = ""
+            start_map = BASE_LINK
+        elif kind == "valid_odom_goal":
+            # The goal given in odom; in the map frame it is b.
+            ox, oy, oyaw = ODOM
+            dx, dy = b[0] - ox, b[1] - oy
+            lx, ly = math.cos(oyaw) * dx + math.sin(oyaw) * dy, -math.sin(oyaw) * dx + math.cos(oyaw) * dy
+            req["goal"] = pose_stamped("odom", lx, ly, yaw_quaternion(b[2] - oyaw))
+        elif kind == "random_pose":
+            span = max(grid.w, grid.h) * grid.res
+            for which in ("start", "goal"):
+                x, y, t = (grid.ox + rng.uniform(-0.2, 1.2) * span, grid.oy + rng.uniform(-0.2, 1.2) * span,
+                           rng.uniform(-4, 4))
+                req[which] = pose_stamped("map", x, y, yaw_quaternion(t))
+                if which == "start":
+                    start_map = (x, y, t)
+                else:
+                    goal_map = (x, y, t)
+        elif kind == "far_out":
+            req["goal"] = pose_stamped("map", 1e6, -1e6, yaw_quaternion(0.0))
+            expected = {S.OUT_OF_MAP}
+        elif kind == "nan_position":
+            which = rng.choice(["start", "goal"])
+            req[which].pose.position.x = float("nan")
+            expected = {S.INVALID_START if which == "start" else S.INVALID_GOAL}
+        elif kind in ("nan_quaternion", "zero_quaternion", "unnormalised_quaternion"):
+            which = rng.choice(["start", "goal"])
+            o = req[which].pose.orientation
+            if kind == "nan_quaternion":
+                o.w = float("nan")
+            elif kind == "zero_quaternion":
+                o.x = o.y = o.z = o.w = 0.0
+            else:
+                o.w *= 2.0
+                o.z *= 2.0
+            expected = {S.INVALID_START if which == "start" else S.INVALID_GOAL}
+        elif kind == "unknown_frame":
+            req[rng.choice(["start", "goal"])].header.frame_id = "nowhere"
+            expected = {S.TF_ERROR}
+        elif kind == "bad_algorithm":
+            req["algorithm"] = rng.choice(["bogus", "AMHA*", " ", "dijkstra"])
+            expected = {S.INVALID_REQUEST}
+        elif kind == "bad_weight":
+            req["algorithm"] = rng.choice(["", "amha", "ara", "wastar"])
+            req[rng.choice(["w1", "w2"]) if req["algorithm"] in ("", "amha") else "w1"] = rng.choice(
+                [0.5, -3.0, float("nan"), float("inf")])
+            expected = {S.INVALID_REQUEST}
+        elif kind == "bad_budget":
+            req["time_budget"] = rng.choice([-1.0, float("nan"), float("inf"), -1e300])
+            expected = {S.INVALID_REQUEST}
+        if expected is not None:
+            expected = expected | {S.BUSY}
+        return kind, req, expected, start_map, goal_map
+
+    def check_path(self, where, path, start_map, goal_map, grids):
+        """Checks one path (nav_msgs/Path); returns the reasons it is wrong ([] = valid)."""
+        poses = path.poses
+        if path.header.frame_id != "map":
+            return ["path frame '%s'" % path.header.frame_id]
+        if not poses:
+            return ["empty path"]
+        xs = [(p.pose.position.x, p.pose.position.y,
+               2 * math.atan2(p.pose.orientation.z, p.pose.orientation.w)) for p in poses]
+        errors_by_map = []
+        for g in grids:
+            err = []
+            tol = g.res * 0.75 + 1e-6
+            if math.hypot(xs[0][0] - start_map[0], xs[0][1] - start_map[1]) > tol:
+                err.append("starts %.3f m from the start" % math.hypot(xs[0][0] - start_map[0], xs[0][1] - start_map[1]))
+            if math.hypot(xs[-1][0] - goal_map[0], xs[-1][1] - goal_map[1]) > tol:
+                err.append("ends %.3f m from the goal" % math.hypot(xs[-1][0] - goal_map[0], xs[-1][1] - goal_map[1]))
+            # Generated headings are the directions of small lattice vectors: the widest gap is
+            # atan(1/2) (26.6 degrees), so the nearest heading is within half of it.
+            if angle_diff(xs[0][2], start_map[2]) > HALF_BIN or angle_diff(xs[-1][2], goal_map[2]) > HALF_BIN:
+                err.append("start or end heading off by more than half a heading bin")
+            for k in range(1, len(xs)):
+                if math.hypot(xs[k][0] - xs[k - 1][0], xs[k][1] - xs[k - 1][1]) > 1.5 * g.res + 1e-6:
+                    err.append("jump of %.3f m at pose %d" % (math.hypot(xs[k][0] - xs[k - 1][0], xs[k][1] - xs[k - 1][1]), k))
+                    break
+            for k, (x, y, _) in enumerate(xs):
+                if not g.circle_free(x, y, ROBOT_RADIUS):
+                    err.append("pose %d (%.2f, %.2f) collides" % (k, x, y))
+                    break
+            if not err:
+                return []
+            errors_by_map.append("%s: %s" % (g.name, "; ".join(err)))
+        return errors_by_map or ["no candidate map"]
+
+    def check_answer(self, interface, kind, expected, res, start_map, goal_map, t_sent, t_done, cancelled, req=None):
+        name = STATUS_NAMES.get(res.status, "UNKNOWN_%d" % res.status)
+        self.count("answers", name)
+        with self.lock:
+            self.stats["answers_by_kind"].setdefault(kind, {})
+            self.stats["answers_by_kind"][kind][name] = self.stats["answers_by_kind"][kind].get(name, 0) + 1
+        where = "%s %s request %d (%s%s)" % (interface, kind, res.request_id, name, "" if req is None else
+                                            ", algorithm '%s' w1 %g w2 %g budget %g" % (req["algorithm"], req["w1"], req["w2"], req["time_budget"]))
+        if res.status not in CLEAN:
+            self.fail("%s: not a clean status: %s" % (where, res.message))
+            return
+        if cancelled and expected is not None:
+            expected = expected | {S.CANCELLED}  # a cancel may overtake the checks
+        if expected is not None and res.status not in expected:
+            self.fail("%s: expected one of %s: %s" % (where, sorted(STATUS_NAMES[s] for s in expected), res.message))
+            return
+        has_path = len(res.path.poses) > 0
+        if res.status == S.SUCCESS and not has_path:
+            self.fail("%s: SUCCESS without a path" % where)
+        if res.status not in (S.SUCCESS, S.CANCELLED) and (has_path or res.solutions):
+            self.fail("%s: a path or solutions with an error status" % where)
+        if not has_path:
+            return
+        grids = self.candidate_maps(t_sent, t_done)
+        errs = self.check_path(where, res.path, start_map, goal_map, grids)
+        with self.lock:
+            self.stats["paths_checked"] += 1
+        if errs:
+            self.fail("%s: invalid path: %s" % (where, " | ".join(errs)))
+            return
+        sols = res.solutions
+        if not sols:
+            self.fail("%s: a path but no solutions" % where)
+            return
+        prev = None
+        for k, s in enumerate(sols):
+            if not (s.bound >= 1.0 and 1.0 - 1e-9 <= s.certified_bound <= s.bound * (1 + 1e-9)):
+                self.fail("%s: solution %d bounds out of order (bound %g, certified %g)" % (where, k, s.bound, s.certified_bound))
+            if prev is not None:
+                if s.cost > prev.cost + 1e-9 or s.bound > prev.bound * (1 + 1e-9) or s.certified_bound > prev.certified_bound * (1 + 1e-9):
+                    self.fail("%s: solution %d: cost or a bound increased: (cost, bound, certified, w1, w2, iteration) "
+                              "%s -> %s" % (where, k, (prev.cost, prev.bound, prev.certified_bound, prev.w1, prev.w2, prev.iteration),
+                                            (s.cost, s.bound, s.certified_bound, s.w1, s.w2, s.iteration)))
+            if s.same_path_as_previous != (len(s.path.poses) == 0) and k > 0:
+                self.fail("%s: solution %d: same_path_as_previous does not match its empty path" % (where, k))
+            if s.path.poses:
+                e = self.check_path(where, s.path, start_map, goal_map, grids)
+                if e:
+                    self.fail("%s: solution %d invalid: %s" % (where, k, " | ".join(e)))
+            prev = s
+        with self.lock:
+            self.stats["solutions_checked"] += len(sols)
+        last = sols[-1]
+        if abs(res.cost - last.cost) > 1e-9 or abs(res.bound - last.bound) > 1e-9 * max(1.0, last.bound):
+            self.fail("%s: response cost/bound differ from the last solution's" % where)
+        straight = math.hypot(goal_map[0] - start_map[0], goal_map[1] - start_map[1])
+        if res.cost < straight - 2 * max(g.res for g in grids) - 1e-6:
+            self.fail("%s: cost %.3f below the straight-line distance %.3f" % (where, res.cost, straight))
+
+    def call_service(self, rng, proxies):
+        kind, r, expected, sm, gm = self.make_request(rng)
+        req = PlanRequest(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
+                          w1=r["w1"], w2=r["w2"])
+        t_sent = time.time()
+        res = proxies["plan"](req)
+        self.check_answer("plan", kind, expected, res, sm, gm, t_sent, time.time(), False, r)
+        return kind
+
+    def call_make_plan(self, rng, proxies):
+        kind, r, expected, sm, gm = self.make_request(rng)
+        if kind in ("bad_algorithm", "bad_weight", "bad_budget"):
+            expected = None  # GetPlan has no algorithm, weights or budget: a valid request
+        t_sent = time.time()
+        res = proxies["make_plan"](GetPlanRequest(start=r["start"], goal=r["goal"], tolerance=0.0))
+        self.count("answers", "make_plan_" + ("path" if res.plan.poses else "empty"))
+        if res.plan.poses:
+            if expected is not None and S.SUCCESS not in expected:
+                self.fail("make_plan %s: a path for a request that must fail" % kind)
+            errs = self.check_path("make_plan", res.plan, sm, gm, self.candidate_maps(t_sent, time.time()))
+            with self.lock:
+                self.stats["paths_checked"] += 1
+            if errs:
+                self.fail("make_plan %s: invalid path: %s" % (kind, " | ".join(errs)))
+        return kind
+
+    def call_action(self, rng, client):
+        kind, r, expected, sm, gm = self.make_request(rng)
+        goal = PlanAnytimeGoal(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
+                               w1=r["w1"], w2=r["w2"])
+        feedback = []
+        t_sent = time.time()
+        client.send_goal(goal, feedback_cb=lambda f: feedback.append(time.time()))
+        cancel_at = None
+        if rng.random() < 0.4:
+            delay = rng.choice([0.0, 0.01, 0.05, 0.2, 0.5, 1.0])
+            if not client.wait_for_result(rospy.Duration(delay) if delay > 0 else rospy.Duration(1e-6)):
+                running = len(feedback) > 0
+                cancel_at = time.time()
+                client.cancel_goal()
+                with self.lock:
+                    self.stats["cancels_sent"] += 1
+        terminal = (GoalStatus.PREEMPTED, GoalStatus.SUCCEEDED, GoalStatus.ABORTED, GoalStatus.REJECTED, GoalStatus.RECALLED)
+        terminal_since = None
+        while not client.wait_for_result(rospy.Duration(1.0)):
+            now = time.time()
+            if client.get_state() in terminal:
+                # The server has finished the goal (actionlib publishes the result and the status
+                # together) but the result message has not reached this client.
+                terminal_since = terminal_since or now
+                if now - terminal_since > 5.0:
+                    self.count("answers", "result_lost_in_transport_after_terminal_status")
+                    return kind
+            elif now - t_sent > 60.0:
+                self.fail("plan_anytime %s: not finished within 60 s (state %d, %d feedback, cancel %s)" %
+                          (kind, client.get_state(), len(feedback), cancel_at is not None))
+                client.cancel_goal()
+                return kind
+        t_done = time.time()
+        if cancel_at is not None and running:
+            with self.lock:
+                self.stats["cancel_latency_running_s"].append(t_done - cancel_at)
+        res = client.get_result()
+        state = client.get_state()
+        if cancel_at is not None and state == GoalStatus.RECALLED:
+            # Cancelled before the server saw the goal: actionlib itself answers RECALLED with an
+            # empty result (whose status field reads 0 = SUCCESS: check the state first).
+            self.count("answers", "RECALLED_by_actionlib")
+            return kind
+        if cancel_at is not None and state == GoalStatus.LOST and not feedback:
+            # Python actionlib's client marks a goal LOST when a status message without it
+            # arrives while it waits for the cancel's acknowledgement (the cancel overtook the
+            # goal); the server never had it. Counted, not a server failure.
+            self.count("answers", "LOST_by_client_after_early_cancel")
+            return kind
+        if res is None:
+            self.fail("plan_anytime %s: no result message (state %d, %d feedback, %.1f s after sending)" %
+                      (kind, state, len(feedback), t_done - t_sent))
+            return kind
+        want = {S.SUCCESS: {GoalStatus.SUCCEEDED}, S.CANCELLED: {GoalStatus.PREEMPTED, GoalStatus.RECALLED, GoalStatus.ABORTED},
+                S.BUSY: {GoalStatus.REJECTED}}.get(res.status, {GoalStatus.ABORTED})
+        if state not in want:
+            self.fail("plan_anytime %s: goal state %d for status %s" % (kind, state, STATUS_NAMES.get(res.status)))
+        self.check_answer("plan_anytime", kind, expected, res, sm, gm, t_sent, t_done, cancel_at is not None, r)
+        return kind
+
+    def worker(self, index):
+        rng = random.Random(self.args.seed * 1000 + index)
+        proxies = {"plan": rospy.ServiceProxy(NS + "/plan", Plan),
+                   "make_plan": rospy.ServiceProxy(NS + "/make_plan", GetPlan)}
+        client = actionlib.SimpleActionClient(NS + "/plan_anytime", PlanAnytimeAction)
+        if not client.wait_for_server(rospy.Duration(30.0)):
+            self.fail("worker %d: no action server" % index)
+            return
+        while not self.stop.is_set():
+            with self.lock:
+                paused = self.pause.is_set()
+                if not paused:
+                    if self.stats["requests"] >= self.args.max_requests:
+                        break
+                    self.stats["requests"] += 1
+                    self.in_flight += 1
+            if paused:
+                time.sleep(0.05)
+                continue
+            interface = rng.choices(["plan", "plan_anytime", "make_plan"], weights=[45, 45, 10])[0]
+            try:
+                if interface == "plan":
+                    kind = self.call_service(rng, proxies)
+                elif interface == "plan_anytime":
+                    kind = self.call_action(rng, client)
+                else:
+                    kind = self.call_make_plan(rng, proxies)
+                self.count("by_interface", interface)
+                self.count("by_kind", kind)
+            except (rospy.ServiceException, rospy.ROSException) as e:
+                self.fail("%s: transport error: %s" % (interface, e))
+                time.sleep(0.5)
+            except Exception:  # a bug in this script must not silently shrink the test
+                self.fail("%s: soak driver error: %s" % (interface, traceback.format_exc()))
+            finally:
+                with self.lock:
+                    self.in_flight -= 1
+
+    # ---- maps
+    def publish_valid(self, msg, name):
+        g = Grid(msg, name)
+        with self.lock:
+            self.maps.append((time.time(), g))
+            del self.maps[:-40]  # requests last seconds; maps minutes
+            self.current = g
+            self.stats["map_updates"]["valid"] += 1
+        self.map_pub.publish(msg)
+
+    def mapper(self):
+        rng = random.Random(self.args.seed + 7)
+        seq = 0
+        while not self.stop.wait(rng.uniform(2.0, 8.0)):
+            if self.pause.is_set():
+                continue
+            seq += 1
+            r = rng.random()
+            if r < 0.4:
+                self.publish_valid(self.willow, "willow")
+            elif r < 0.7:
+                msg = synthetic_map(rng, seq)
+                self.publish_valid(msg, "synthetic-%d" % seq)
+            else:
+                msg, kind = malformed_map(rng, self.current.msg)
+                self.count_malformed(kind)
+                self.map_pub.publish(msg)
+
+    def count_malformed(self, kind):
+        with self.lock:
+            d = self.stats["map_updates"]["malformed"]
+            d[kind] = d.get(kind, 0) + 1
+
+    # ---- memory checkpoints: the same map and request each time, then RSS
+    def checkpoint(self, label):
+        with self.lock:
+            self.pause.set()
+        while True:
+            with self.lock:
+                if self.in_flight == 0:
+                    break
+            time.sleep(0.05)
+        self.publish_valid(self.willow, "willow")
+        time.sleep(3.0)
+        plan = rospy.ServiceProxy(NS + "/plan", Plan)
+        req = PlanRequest(start=pose_stamped("map", 17.0, 55.0, yaw_quaternion(-1.57)),
+                          goal=pose_stamped("map", 26.0, 6.0, yaw_quaternion(0.0)), time_budget=2.0)
+        statuses = [STATUS_NAMES.get(plan(req).status) for _ in range(2)]
+        time.sleep(1.0)
+        cp = {"label": label, "t_s": round(time.time() - self.t0, 1), "rss_kb": self.status_kb("VmRSS"),
+              "hwm_kb": self.status_kb("VmHWM"), "reference_requests": statuses,
+              "requests_so_far": self.stats["requests"]}
+        with self.lock:
+            self.stats["checkpoints"].append(cp)
+        rospy.loginfo("soak checkpoint %s: %s", label, cp)
+        self.pause.clear()
+
+    def run(self):
+        rospy.wait_for_service(NS + "/plan", timeout=60.0)
+        self.willow = rospy.wait_for_message("/map", OccupancyGrid, timeout=60.0)
+        self.node_pid = self.find_node_pid()
+        if self.node_pid is None:
+            raise RuntimeError("cannot find the planner's process")
+        self.t0 = time.time()
+        self.publish_valid(self.willow, "willow")
+        threads = [threading.Thread(target=self.monitor, daemon=True), threading.Thread(target=self.mapper, daemon=True)]
+        threads += [threading.Thread(target=self.worker, args=(k,), daemon=True) for k in range(self.args.threads)]
+        for t in threads:
+            t.start()
+        end = self.t0 + self.args.seconds
+        warmup = min(30.0, self.args.seconds / 10)
+        marks = [(self.t0 + warmup, "start"), (self.t0 + self.args.seconds / 2, "middle")]
+        for at, label in marks:
+            while time.time() < at and not self.stop.is_set():
+                time.sleep(0.2)
+            if not self.stop.is_set():
+                self.checkpoint(label)
+        while time.time() < end and not self.stop.is_set():
+            with self.lock:
+                if self.stats["requests"] >= self.args.max_requests:
+                    break
+            time.sleep(0.2)
+        if not self.stop.is_set():
+            self.checkpoint("end")
+        self.stop.set()
+        for t in threads[2:]:
+            t.join(timeout=90.0)
+        return self.summary()
+
+    def summary(self):
+        st = self.stats
+        st["seconds"] = round(time.time() - self.t0, 1)
+        st["node_pid"] = self.node_pid
+        st["node_alive_at_end"] = self.status_kb("VmRSS") is not None
+        lat = sorted(st["cancel_latency_running_s"])
+        st["cancel_latency_running"] = {"count": len(lat), "median_ms": round(1000 * lat[len(lat) // 2], 1) if lat else None,
+                                        "max_ms": round(1000 * lat[-1], 1) if lat else None}
+        del st["cancel_latency_running_s"]
+        cps = {c["label"]: c for c in st["checkpoints"]}
+        if not st["node_alive_at_end"]:
+            self.fail("the planner node died")
+        if "middle" in cps and "end" in cps and cps["middle"]["rss_kb"] and cps["end"]["rss_kb"]:
+            grown = cps["end"]["rss_kb"] - cps["middle"]["rss_kb"]
+            st["rss_growth_middle_to_end_kb"] = grown
+            if grown > 0.10 * cps["middle"]["rss_kb"] + 16 * 1024:
+                self.fail("memory grew from %d kB (middle) to %d kB (end)" % (cps["middle"]["rss_kb"], cps["end"]["rss_kb"]))
+        elif self.args.seconds >= 60:
+            self.fail("missing memory checkpoints")
+        if lat and lat[-1] > 1.0:
+            self.fail("a running goal's cancel took %.0f ms" % (1000 * lat[-1]))
+        st["failure_count"] = len(st["failures"])
+        st["failures"] = st["failures"][:50]
+        samples = st.pop("rss_kb")
+        st["rss_kb_samples"] = {"count": len(samples), "min": min(s[1] for s in samples) if samples else None,
+                                "max": max(s[1] for s in samples) if samples else None,
+                                "first": samples[:3], "last": samples[-3:]}
+        return st
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--seconds", type=float, default=300.0)
+    ap.add_argument("--max-requests", type=int, default=100000)
+    ap.add_argument("--threads", type=int, default=3)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--json", default="")
+    args = ap.parse_args(rospy.myargv()[1:])
+    rospy.init_node("soak", anonymous=True, disable_signals=True)
+    soak = Soak(args)
+    summary = soak.run()
+    text = json.dumps(summary, indent=1, sort_keys=True)
+    print(text)
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(text + "\n")
+    ok = summary["failure_count"] == 0
+    print("SOAK %s: %d requests in %.0f s, %d failures" % ("PASSED" if ok else "FAILED", summary["requests"],
+                                                          summary["seconds"], summary["failure_count"]))
+    rospy.signal_shutdown("done")
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
