@@ -43,8 +43,8 @@ std::string rate(double v) {
 }
 
 const char* kHeader[] = {"algorithm", "success %",  "T_initial s", "T_final s", "eps_initial",
-                         "eps_final", "cert_final", "cost_final",  "exp/s",     "bytes/state",
-                         "states"};
+                         "eps_final", "cert_final", "cost_final",  "exp/s",     "exp/cpu-s",
+                         "bytes/state", "states"};
 
 std::vector<std::vector<std::string>> rows(const std::vector<AlgorithmSummary>& s) {
   std::vector<std::vector<std::string>> out;
@@ -63,7 +63,8 @@ std::vector<std::vector<std::string>> rows(const std::vector<AlgorithmSummary>& 
     out.push_back({algorithmName(a.algorithm), success, num(any ? a.t_initial : nan),
                    num(any ? a.t_final : nan), eps_init, num(any ? a.eps_final : nan, 2),
                    num(any ? a.certified_final : nan, 2), num(any ? a.cost_final : nan, 1),
-                   rate(a.expansions_per_s), num(a.bytes_per_state, 1), num(a.peak_states, 0)});
+                   rate(a.expansions_per_s), rate(a.expansions_per_cpu_s),
+                   num(a.bytes_per_state, 1), num(a.peak_states, 0)});
   }
   return out;
 }
@@ -76,7 +77,7 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
   for (Algorithm alg : algorithms) {
     AlgorithmSummary a;
     a.algorithm = alg;
-    double expansions = 0, seconds = 0;
+    double expansions = 0, seconds = 0, cpu = 0;
     std::vector<double> t_init, cert;
     for (const TilesRun& r : runs) {
       if (r.algorithm != alg) continue;
@@ -84,6 +85,7 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
       ++a.runs;
       expansions += static_cast<double>(res.expansions);
       seconds += res.elapsed_s;
+      cpu += r.cpu_s;
       if (res.peak_states > 0) {
         a.bytes_per_state += static_cast<double>(res.peak_memory_bytes) / res.peak_states;
       }
@@ -121,6 +123,7 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
     a.median_t_initial = median(t_init);
     a.median_certified_final = median(cert);
     a.expansions_per_s = seconds > 0 ? expansions / seconds : 0.0;
+    a.expansions_per_cpu_s = cpu > 0 ? expansions / cpu : 0.0;
     out.push_back(a);
   }
   return out;

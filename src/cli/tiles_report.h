@@ -18,6 +18,7 @@ struct TilesRun {
   Algorithm algorithm = Algorithm::kAmhaStar;
   std::optional<int> optimal;
   SearchResult result;  // solution paths may have been dropped after verification
+  double cpu_s = 0;     // CPU time of the searching thread (wall time is result.elapsed_s)
 };
 
 /// Means are over the runs that found a solution ("solved"); speed and memory over all runs.
@@ -30,7 +31,9 @@ struct AlgorithmSummary {
   double certified_final = 0;               ///< mean certified bound of the last solution
   double cost_final = 0;                    ///< mean cost of the last solution
   double median_t_initial = 0, median_certified_final = 0;
-  double expansions_per_s = 0;              ///< total expansions / total search time
+  double expansions_per_s = 0;              ///< total expansions / total search (wall) time
+  double expansions_per_cpu_s = 0;          ///< total expansions / total CPU time: the speed
+                                            ///< on an idle core, when the machine is shared
   double bytes_per_state = 0;               ///< mean of peak_memory_bytes / peak_states
   double peak_states = 0;                   ///< mean states stored at the end of a run
   int proven_optimal = 0;                   ///< runs that ended proving optimality

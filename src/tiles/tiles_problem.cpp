@@ -5,6 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "line_conflict.h"
+
 namespace amha {
 namespace tiles {
 
@@ -21,13 +23,16 @@ constexpr int infoLcHalf(std::uint32_t i) { return static_cast<int>((i >> 10) & 
 constexpr int infoMt(std::uint32_t i) { return static_cast<int>((i >> 18) & 127u); }
 constexpr int infoBlank(std::uint32_t i) { return static_cast<int>(i >> 25); }
 
-// W 64-bit words a board, B bits a tile.
-template <int W, int B>
+// The N x N puzzle: B bits a tile, W 64-bit words a board. N is a template parameter so that
+// divisions by N compile to multiplications and the per-tile loops unroll.
+template <int N>
 class TilesSpace final : public TilesProblem {
  public:
+  static constexpr int B = N <= 4 ? 4 : N == 5 ? 5 : N <= 8 ? 6 : 7;
+  static constexpr int W = (N * N * B + 63) / 64;
+
   TilesSpace(const Board& start, std::vector<TermWeights> weights)
-      : TilesProblem(start.size, std::move(weights)), n_(start.size), n2_(start.size * start.size) {
-    static_assert(B <= 8 && W >= 1, "layout");
+      : TilesProblem(start.size, std::move(weights)) {
     for (int p = 0; p < n2_; ++p) {
       const int r = p / n_, c = p % n_;
       int k = 0;
@@ -56,13 +61,13 @@ class TilesSpace final : public TilesProblem {
     std::memcpy(parent, words(s), sizeof(parent));
     const std::uint32_t info = infoOf(s);
     const int b = infoBlank(info);
-    unpack(parent, board_);
     for (int k = 0; k < num_neighbours_[b]; ++k) {
       const int p = neighbours_[b][k];
-      const int t = board_[p];
+      const int t = static_cast<int>(getField(parent, p));
+      // Field b holds 0 and field p holds t: XOR-ing t into both moves the tile.
       std::memcpy(child, parent, sizeof(child));
-      setField(child, b, static_cast<std::uint32_t>(t));
-      setField(child, p, 0);
+      xorField(child, b, static_cast<std::uint64_t>(t));
+      xorField(child, p, static_cast<std::uint64_t>(t));
       const std::uint64_t h = hashWords(child);
       std::size_t slot = h & mask_;
       StateId id = kEmpty;
@@ -74,7 +79,7 @@ class TilesSpace final : public TilesProblem {
           break;
         }
       }
-      if (id == kEmpty) id = insertAt(slot, child, childInfo(info, b, p, t));
+      if (id == kEmpty) id = insertAt(slot, child, childInfo(parent, info, b, p, t));
       out.push_back(Edge{id, 1});
     }
   }
@@ -137,6 +142,11 @@ class TilesSpace final : public TilesProblem {
       w[wi + 1] = (w[wi + 1] & ~m) | (static_cast<std::uint64_t>(val) >> (64 - off));
     }
   }
+  static void xorField(std::uint64_t* w, int i, std::uint64_t val) {
+    const int bit = i * B, wi = bit >> 6, off = bit & 63;
+    w[wi] ^= val << off;
+    if (off + B > 64) w[wi + 1] ^= val >> (64 - off);
+  }
   void unpack(const std::uint64_t* w, std::uint8_t* tiles) const {
     for (int i = 0; i < n2_; ++i) tiles[i] = static_cast<std::uint8_t>(getField(w, i));
   }
@@ -153,26 +163,27 @@ class TilesSpace final : public TilesProblem {
   }
 
   // MD, LC and MT of the child reached by moving tile t from p into the blank at b, from the
-  // parent's values (board_ holds the parent).
-  std::uint32_t childInfo(std::uint32_t info, int b, int p, int t) {
+  // parent's values and packed board.
+  std::uint32_t childInfo(const std::uint64_t* parent, std::uint32_t info, int b, int p, int t) const {
     const int md = infoMd(info) + dist_[t * n2_ + b] - dist_[t * n2_ + p];
     const int mt = infoMt(info) + (t != b) - (t != p);
     int lc_half = infoLcHalf(info);
-    const bool horizontal = (b / n_) == (p / n_);
-    // A horizontal move keeps the order within the row and changes the column contents of
-    // col(p) and col(b), but only t's goal column can gain or lose a tile that belongs in it.
-    const int goal_line = horizontal ? t % n_ : t / n_;
-    const int from_line = horizontal ? p % n_ : p / n_;
-    const int to_line = horizontal ? b % n_ : b / n_;
+    // A horizontal move keeps the order of the tiles within the row; it changes the contents
+    // of columns col(p) and col(b), and only t's goal column can gain or lose a tile that
+    // belongs in it (vertical moves: the same with rows and columns swapped). Both boards hold
+    // t or the blank at the same offset of that line, and agree on the rest of it.
+    const bool horizontal = (b / N) == (p / N);
+    const int goal_line = horizontal ? t % N : t / N;
+    const int from_line = horizontal ? p % N : p / N;
+    const int to_line = horizontal ? b % N : b / N;
     if (goal_line == from_line || goal_line == to_line) {
-      const bool row = !horizontal;
-      const int before = lineConflictRemovals(board_, n_, row, goal_line);
-      board_[b] = static_cast<std::uint8_t>(t);
-      board_[p] = 0;
-      const int after = lineConflictRemovals(board_, n_, row, goal_line);
-      board_[p] = static_cast<std::uint8_t>(t);
-      board_[b] = 0;
-      lc_half += after - before;
+      const bool row = !horizontal;  // the changed line is a row for vertical moves
+      const int at = horizontal ? p / N : p % N;  // offset of t (or the blank) in that line
+      auto get = [&](int k) {
+        return static_cast<int>(getField(parent, row ? goal_line * N + k : k * N + goal_line));
+      };
+      const int added = detail::lineRemovalsAddedTile<N>(get, row, goal_line, at, t);
+      lc_half += goal_line == to_line ? added : -added;
     }
     return packInfo(md, lc_half, mt, p);
   }
@@ -209,8 +220,8 @@ class TilesSpace final : public TilesProblem {
   void growTable() {
     std::vector<StateId> bigger(slots_.size() * 2, kEmpty);
     const std::size_t mask = bigger.size() - 1;
-    for (StateId id : slots_) {
-      if (id == kEmpty) continue;
+    // Walk the arena in id order (sequential reads) rather than the old table (random reads).
+    for (StateId id = 0; id < count_; ++id) {
       std::size_t slot = hashWords(words(id)) & mask;
       while (bigger[slot] != kEmpty) slot = (slot + 1) & mask;
       bigger[slot] = id;
@@ -219,16 +230,15 @@ class TilesSpace final : public TilesProblem {
     mask_ = mask;
   }
 
-  const int n_, n2_;
+  static constexpr int n_ = N, n2_ = N * N;
   StateId start_ = 0, goal_ = 0;
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
   std::vector<StateId> slots_;
   std::size_t mask_ = (std::size_t{1} << 12) - 1;
-  std::uint8_t neighbours_[kMaxSize * kMaxSize][4] = {};
-  std::uint8_t num_neighbours_[kMaxSize * kMaxSize] = {};
-  std::uint8_t dist_[kMaxSize * kMaxSize * kMaxSize * kMaxSize] = {};  // dist_[t * n2 + p]
-  std::uint8_t board_[kMaxSize * kMaxSize] = {};  // the state being expanded, unpacked
+  std::uint8_t neighbours_[N * N][4] = {};
+  std::uint8_t num_neighbours_[N * N] = {};
+  std::uint8_t dist_[N * N * N * N] = {};  // dist_[t * N * N + p]: Manhattan distance
 };
 
 }  // namespace
@@ -246,13 +256,13 @@ std::unique_ptr<TilesProblem> TilesProblem::create(const Board& start,
     }
   }
   switch (start.size) {
-    case 3:
-    case 4: return std::make_unique<TilesSpace<1, 4>>(start, std::move(weights));
-    case 5: return std::make_unique<TilesSpace<2, 5>>(start, std::move(weights));
-    case 6: return std::make_unique<TilesSpace<4, 6>>(start, std::move(weights));
-    case 7: return std::make_unique<TilesSpace<5, 6>>(start, std::move(weights));
-    case 8: return std::make_unique<TilesSpace<6, 6>>(start, std::move(weights));
-    default: return std::make_unique<TilesSpace<9, 7>>(start, std::move(weights));
+    case 3: return std::make_unique<TilesSpace<3>>(start, std::move(weights));
+    case 4: return std::make_unique<TilesSpace<4>>(start, std::move(weights));
+    case 5: return std::make_unique<TilesSpace<5>>(start, std::move(weights));
+    case 6: return std::make_unique<TilesSpace<6>>(start, std::move(weights));
+    case 7: return std::make_unique<TilesSpace<7>>(start, std::move(weights));
+    case 8: return std::make_unique<TilesSpace<8>>(start, std::move(weights));
+    default: return std::make_unique<TilesSpace<9>>(start, std::move(weights));
   }
 }
 
