@@ -45,7 +45,7 @@ class TilesSpace final : public TilesProblem {
         dist_[t * n2_ + p] = static_cast<std::uint8_t>(std::abs(r - t / n_) + std::abs(c - t % n_));
       }
     }
-    slots_.assign(std::size_t{1} << 12, kEmpty);
+    setTableSize(12);
     const Board goal = goalBoard(n_);
     start_ = insertBoard(start);
     goal_ = insertBoard(goal);
@@ -69,17 +69,9 @@ class TilesSpace final : public TilesProblem {
       xorField(child, b, static_cast<std::uint64_t>(t));
       xorField(child, p, static_cast<std::uint64_t>(t));
       const std::uint64_t h = hashWords(child);
-      std::size_t slot = h & mask_;
-      StateId id = kEmpty;
-      for (;; slot = (slot + 1) & mask_) {
-        const StateId cand = slots_[slot];
-        if (cand == kEmpty) break;
-        if (std::memcmp(words(cand), child, sizeof(child)) == 0) {
-          id = cand;
-          break;
-        }
-      }
-      if (id == kEmpty) id = insertAt(slot, child, childInfo(parent, info, b, p, t));
+      std::size_t slot;
+      StateId id = probe(child, h, &slot);
+      if (id == kEmpty) id = insertAt(slot, h, child, childInfo(parent, info, b, p, t));
       out.push_back(Edge{id, 1});
     }
   }
@@ -191,15 +183,44 @@ class TilesSpace final : public TilesProblem {
   StateId insertBoard(const Board& b) {
     std::uint64_t w[W] = {};
     for (int i = 0; i < n2_; ++i) setField(w, i, b.tiles[i]);
-    std::size_t slot = hashWords(w) & mask_;
-    for (; slots_[slot] != kEmpty; slot = (slot + 1) & mask_) {
-      if (std::memcmp(words(slots_[slot]), w, sizeof(w)) == 0) return slots_[slot];
-    }
+    const std::uint64_t h = hashWords(w);
+    std::size_t slot;
+    const StateId id = probe(w, h, &slot);
+    if (id != kEmpty) return id;
     const HeuristicTerms t = heuristicTerms(b);
-    return insertAt(slot, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)));
+    return insertAt(slot, h, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)));
   }
 
-  StateId insertAt(std::size_t slot, const std::uint64_t* w, std::uint32_t info) {
+  // Table slots: the low shift_ bits hold the id (ids stay below 0.7 * capacity = 0.7 *
+  // 2^shift_), the high 32 - shift_ bits a tag taken from the top of the hash, so that probes
+  // past other states rarely read the arena. All ones (kEmpty) is never a stored value.
+  void setTableSize(int shift) {
+    if (shift > 31) throw std::length_error("sliding tiles: more than 1.5 billion states");
+    shift_ = shift;
+    mask_ = (std::size_t{1} << shift) - 1;
+    id_mask_ = static_cast<std::uint32_t>(mask_);
+    slots_.assign(std::size_t{1} << shift, kEmpty);
+  }
+  std::uint32_t tagOf(std::uint64_t h) const {
+    return static_cast<std::uint32_t>(h >> (32 + shift_)) << shift_;
+  }
+  // The id of board w (hash h), or kEmpty and the free slot where it belongs.
+  StateId probe(const std::uint64_t* w, std::uint64_t h, std::size_t* slot_out) const {
+    const std::uint32_t tag = tagOf(h);
+    std::size_t slot = h & mask_;
+    for (;; slot = (slot + 1) & mask_) {
+      const std::uint32_t v = slots_[slot];
+      if (v == kEmpty) break;
+      if ((v & ~id_mask_) == tag && std::memcmp(words(v & id_mask_), w, sizeof(std::uint64_t) * W) == 0) {
+        *slot_out = slot;
+        return v & id_mask_;
+      }
+    }
+    *slot_out = slot;
+    return kEmpty;
+  }
+
+  StateId insertAt(std::size_t slot, std::uint64_t h, const std::uint64_t* w, std::uint32_t info) {
     const StateId id = static_cast<StateId>(count_);
     if ((count_ & (kChunkStates - 1)) == 0) {
       Chunk c;
@@ -212,30 +233,30 @@ class TilesSpace final : public TilesProblem {
     std::memcpy(c.words.get() + off * W, w, sizeof(std::uint64_t) * W);
     c.info[off] = info;
     ++count_;
-    slots_[slot] = id;
+    slots_[slot] = tagOf(h) | id;
     if (count_ * 10 > slots_.size() * 7) growTable();
     return id;
   }
 
   void growTable() {
-    std::vector<StateId> bigger(slots_.size() * 2, kEmpty);
-    const std::size_t mask = bigger.size() - 1;
+    setTableSize(shift_ + 1);
     // Walk the arena in id order (sequential reads) rather than the old table (random reads).
     for (StateId id = 0; id < count_; ++id) {
-      std::size_t slot = hashWords(words(id)) & mask;
-      while (bigger[slot] != kEmpty) slot = (slot + 1) & mask;
-      bigger[slot] = id;
+      const std::uint64_t h = hashWords(words(id));
+      std::size_t slot = h & mask_;
+      while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
+      slots_[slot] = tagOf(h) | id;
     }
-    slots_.swap(bigger);
-    mask_ = mask;
   }
 
   static constexpr int n_ = N, n2_ = N * N;
   StateId start_ = 0, goal_ = 0;
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
-  std::vector<StateId> slots_;
-  std::size_t mask_ = (std::size_t{1} << 12) - 1;
+  std::vector<std::uint32_t> slots_;
+  std::size_t mask_ = 0;
+  std::uint32_t id_mask_ = 0;
+  int shift_ = 0;
   std::uint8_t neighbours_[N * N][4] = {};
   std::uint8_t num_neighbours_[N * N] = {};
   std::uint8_t dist_[N * N * N * N] = {};  // dist_[t * N * N + p]: Manhattan distance
