@@ -19,9 +19,17 @@ struct TilesRun {
   std::optional<int> optimal;
   SearchResult result;  // solution paths may have been dropped after verification
   double cpu_s = 0;     // CPU time of the searching thread (wall time is result.elapsed_s)
+  std::vector<double> solution_cpu_s;  // the same clock at each solution
+
+  /// Time of solution k on the chosen clock.
+  double solutionTime(std::size_t k, bool cpu_clock) const {
+    return cpu_clock ? solution_cpu_s.at(k) : result.solutions.at(k).elapsed_s;
+  }
 };
 
 /// Means are over the runs that found a solution ("solved"); speed and memory over all runs.
+/// Times (T_initial, T_final, the plot's axis) are on the CPU clock of the searching thread if
+/// `cpu_clock`, else wall-clock.
 struct AlgorithmSummary {
   Algorithm algorithm = Algorithm::kAmhaStar;
   int runs = 0, solved = 0;
@@ -41,7 +49,7 @@ struct AlgorithmSummary {
 };
 
 std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
-                                        const std::vector<Algorithm>& algorithms);
+                                        const std::vector<Algorithm>& algorithms, bool cpu_clock);
 
 /// Aligned plain-text table (for the terminal).
 std::string formatTable(const std::vector<AlgorithmSummary>& s);
@@ -53,7 +61,7 @@ std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s);
 /// Points are emitted where the median changes, plus one at the time limit.
 std::vector<PlotSeries> medianBoundCurves(const std::vector<TilesRun>& runs,
                                           const std::vector<Algorithm>& algorithms,
-                                          double time_limit);
+                                          double time_limit, bool cpu_clock);
 
 }  // namespace cli
 }  // namespace amha
