@@ -322,7 +322,8 @@ int runTiles(int argc, char** argv) {
             << formatTable(summary)
             << "means over solved runs; exp/s = all expansions / all search (wall) time; exp/cpu-s "
                "the same per CPU second of the searching thread; bytes/state = peak memory "
-               "(search + domain) / stored states, mean over runs\n";
+               "(search + domain) / stored states, mean over runs\n"
+            << formatOptimalityCheck(summary);
 
   try {
     if (!o.json.empty()) {
@@ -371,7 +372,10 @@ int runTiles(int argc, char** argv) {
                         {"eps_final", s.eps_final}, {"certified_final", s.certified_final},
                         {"cost_final", s.cost_final}, {"expansions_per_s", s.expansions_per_s},
                         {"expansions_per_cpu_s", s.expansions_per_cpu_s},
-                        {"bytes_per_state", s.bytes_per_state}, {"proven_optimal", s.proven_optimal}});
+                        {"bytes_per_state", s.bytes_per_state}, {"proven_optimal", s.proven_optimal},
+                        {"with_known_optimal", s.with_known_optimal},
+                        {"at_known_optimal", s.at_known_optimal},
+                        {"below_known_optimal", s.below_known_optimal}});
       }
       for (auto& j : jsum) {
         for (auto it = j.begin(); it != j.end(); ++it) {

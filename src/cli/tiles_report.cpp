@@ -107,6 +107,11 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
       a.certified_final += last.certified_bound;
       a.cost_final += static_cast<double>(last.cost);
       t_init.push_back(t_first);
+      if (r.optimal) {
+        ++a.with_known_optimal;
+        a.at_known_optimal += last.cost == *r.optimal;
+        a.below_known_optimal += last.cost < *r.optimal;
+      }
       cert.push_back(last.certified_bound);
     }
     if (a.runs > 0) {
@@ -149,6 +154,22 @@ std::string formatTable(const std::vector<AlgorithmSummary>& s) {
   };
   line(std::vector<std::string>(std::begin(kHeader), std::end(kHeader)));
   for (const auto& r : body) line(r);
+  return out.str();
+}
+
+std::string formatOptimalityCheck(const std::vector<AlgorithmSummary>& s) {
+  std::ostringstream out;
+  for (const AlgorithmSummary& a : s) {
+    if (a.with_known_optimal == 0) continue;
+    out << algorithmName(a.algorithm) << ": final cost = the known optimal length on "
+        << a.at_known_optimal << " of " << a.with_known_optimal
+        << " solved runs with a known optimum (" << a.proven_optimal << " runs proved optimality)";
+    if (a.below_known_optimal > 0) {
+      out << "; BELOW the known optimum on " << a.below_known_optimal
+          << " (the file's optimal lengths are wrong)";
+    }
+    out << "\n";
+  }
   return out.str();
 }
 

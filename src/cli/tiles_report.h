@@ -45,6 +45,9 @@ struct AlgorithmSummary {
   double bytes_per_state = 0;               ///< mean of peak_memory_bytes / peak_states
   double peak_states = 0;                   ///< mean states stored at the end of a run
   int proven_optimal = 0;                   ///< runs that ended proving optimality
+  int with_known_optimal = 0;               ///< solved runs whose instance has a known optimum
+  int at_known_optimal = 0;                 ///< ... whose final cost equals it
+  int below_known_optimal = 0;              ///< ... whose final cost is below it (a wrong file)
   double success_rate() const { return runs > 0 ? 100.0 * solved / runs : 0.0; }
 };
 
@@ -53,6 +56,8 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
 
 /// Aligned plain-text table (for the terminal).
 std::string formatTable(const std::vector<AlgorithmSummary>& s);
+/// Lines comparing final costs with the instances' known optimal lengths ("" if none known).
+std::string formatOptimalityCheck(const std::vector<AlgorithmSummary>& s);
 /// The same as a Markdown table.
 std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s);
 
