@@ -319,11 +319,7 @@ int runTiles(int argc, char** argv) {
             << instances.front().start.size << ", time limit " << o.time_limit << " s ("
             << (cpu_clock ? "CPU" : "wall") << " clock), "
             << o.heuristics << " inadmissible heuristic(s) (seed " << o.heuristic_seed << ")\n"
-            << formatTable(summary)
-            << "means over solved runs; exp/s = all expansions / all search (wall) time; exp/cpu-s "
-               "the same per CPU second of the searching thread; bytes/state = peak memory "
-               "(search + domain) / stored states, mean over runs\n"
-            << formatOptimalityCheck(summary);
+            << reportText(runs, algorithms, cpu_clock);
 
   try {
     if (!o.json.empty()) {
@@ -387,26 +383,12 @@ int runTiles(int argc, char** argv) {
     }
     if (!o.markdown.empty()) {
       std::ofstream md(o.markdown);
-      md << formatMarkdownTable(summary);
+      md << reportMarkdown(runs, algorithms, cpu_clock);
       if (!md) throw std::runtime_error("cannot write " + o.markdown);
     }
-    if (!o.plot.empty()) {
-      PlotOptions po;
-      const int n = instances.front().start.size;
-      po.title = std::to_string(n * n - 1) + "-puzzle: median certified bound vs time (" +
-                 std::to_string(instances.size()) + " instances)";
-      po.x_label = "time [s] (log)";
-      po.y_label = "median certified bound";
-      po.log_x = true;
-      const auto curves = medianBoundCurves(runs, algorithms, o.time_limit, cpu_clock);
-      const bool drawable = std::any_of(curves.begin(), curves.end(), [](const PlotSeries& c) {
-        return std::any_of(c.y.begin(), c.y.end(), [](double y) { return std::isfinite(y); });
-      });
-      if (drawable) {
-        writeLinePlot(o.plot, curves, po);
-      } else {
-        std::cerr << "amha tiles: no plot written: no algorithm solved half of the instances\n";
-      }
+    if (!o.plot.empty() && !writeBoundPlot(o.plot, runs, algorithms, o.time_limit, cpu_clock,
+                                           instances.front().start.size, instances.size())) {
+      std::cerr << "amha tiles: no plot written: no algorithm solved half of the instances\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "amha tiles: " << e.what() << "\n";

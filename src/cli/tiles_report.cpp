@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace amha {
@@ -67,6 +68,43 @@ std::vector<std::vector<std::string>> rows(const std::vector<AlgorithmSummary>& 
                    num(a.bytes_per_state, 1), num(a.peak_states, 0)});
   }
   return out;
+}
+
+std::string textTable(const std::vector<std::string>& header,
+                      const std::vector<std::vector<std::string>>& body) {
+  std::vector<std::size_t> width;
+  for (const auto& h : header) width.push_back(h.size());
+  for (const auto& r : body) {
+    for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
+  }
+  std::ostringstream out;
+  auto line = [&](const std::vector<std::string>& cells) {
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (i > 0) out << "  ";
+      const std::string pad(width[i] - cells[i].size(), ' ');
+      out << (i == 0 ? cells[i] + pad : pad + cells[i]);
+    }
+    out << "\n";
+  };
+  line(header);
+  for (const auto& r : body) line(r);
+  return out.str();
+}
+
+std::string markdownTable(const std::vector<std::string>& header,
+                          const std::vector<std::vector<std::string>>& body) {
+  std::ostringstream out;
+  out << "|";
+  for (const auto& h : header) out << " " << h << " |";
+  out << "\n|";
+  for (std::size_t i = 0; i < header.size(); ++i) out << (i == 0 ? "---|" : "---:|");
+  out << "\n";
+  for (const auto& r : body) {
+    out << "|";
+    for (const auto& c : r) out << " " << c << " |";
+    out << "\n";
+  }
+  return out.str();
 }
 
 }  // namespace
@@ -137,24 +175,7 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
 }
 
 std::string formatTable(const std::vector<AlgorithmSummary>& s) {
-  const auto body = rows(s);
-  std::vector<std::size_t> width;
-  for (const char* h : kHeader) width.push_back(std::string(h).size());
-  for (const auto& r : body) {
-    for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
-  }
-  std::ostringstream out;
-  auto line = [&](const std::vector<std::string>& cells) {
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      if (i > 0) out << "  ";
-      const std::string pad(width[i] - cells[i].size(), ' ');
-      out << (i == 0 ? cells[i] + pad : pad + cells[i]);
-    }
-    out << "\n";
-  };
-  line(std::vector<std::string>(std::begin(kHeader), std::end(kHeader)));
-  for (const auto& r : body) line(r);
-  return out.str();
+  return textTable({std::begin(kHeader), std::end(kHeader)}, rows(s));
 }
 
 std::string formatOptimalityCheck(const std::vector<AlgorithmSummary>& s) {
@@ -174,18 +195,134 @@ std::string formatOptimalityCheck(const std::vector<AlgorithmSummary>& s) {
 }
 
 std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s) {
+  return markdownTable({std::begin(kHeader), std::end(kHeader)}, rows(s));
+}
+
+std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
+                                           const std::vector<Algorithm>& algorithms,
+                                           bool cpu_clock, std::size_t* n_common,
+                                           std::size_t* n_instances) {
+  // Instances (in first-seen order) and how many of the algorithms solved each.
+  std::vector<std::string> order;
+  std::map<std::string, std::size_t> solved_by;
+  for (const TilesRun& r : runs) {
+    if (!solved_by.count(r.instance)) order.push_back(r.instance);
+    solved_by[r.instance] += r.result.hasSolution() ? 1 : 0;
+  }
+  *n_instances = order.size();
+  *n_common = 0;
+  for (const auto& kv : solved_by) *n_common += kv.second == algorithms.size();
+  std::vector<CommonSummary> out;
+  for (Algorithm alg : algorithms) {
+    CommonSummary c;
+    c.algorithm = alg;
+    std::vector<double> t_init;
+    for (const TilesRun& r : runs) {
+      if (r.algorithm != alg || solved_by[r.instance] != algorithms.size()) continue;
+      const auto& sols = r.result.solutions;
+      t_init.push_back(r.solutionTime(0, cpu_clock));
+      c.t_final += r.solutionTime(sols.size() - 1, cpu_clock);
+      c.cost_final += static_cast<double>(sols.back().cost);
+      c.certified_final += sols.back().certified_bound;
+      c.eps_final += sols.back().nominal_bound;
+    }
+    const double n = static_cast<double>(t_init.size());
+    if (n > 0) {
+      for (double t : t_init) c.t_initial += t;
+      c.t_initial /= n;
+      c.t_final /= n;
+      c.cost_final /= n;
+      c.certified_final /= n;
+      c.eps_final /= n;
+    }
+    c.median_t_initial = median(t_init);
+    out.push_back(c);
+  }
+  return out;
+}
+
+namespace {
+
+const char* kCommonHeader[] = {"algorithm", "T_initial s", "median T_initial s", "T_final s",
+                               "eps_final", "cert_final", "cost_final"};
+
+std::vector<std::vector<std::string>> commonRows(const std::vector<CommonSummary>& s) {
+  std::vector<std::vector<std::string>> out;
+  for (const CommonSummary& c : s) {
+    out.push_back({algorithmName(c.algorithm), num(c.t_initial), num(c.median_t_initial),
+                   num(c.t_final), num(c.eps_final, 2), num(c.certified_final, 2),
+                   num(c.cost_final, 1)});
+  }
+  return out;
+}
+
+const char* kLegend =
+    "Means over each algorithm's solved runs (times on the %s clock). eps = nominal bound, "
+    "cert = certified bound (cost / proven lower bound), exp/s per wall-clock second, exp/cpu-s "
+    "per CPU second of the searching thread, bytes/state = peak memory (search + domain) / "
+    "stored states.";
+
+std::string legend(bool cpu_clock) {
+  char buf[512];
+  std::snprintf(buf, sizeof(buf), kLegend, cpu_clock ? "CPU" : "wall");
+  return buf;
+}
+
+}  // namespace
+
+std::string reportText(const std::vector<TilesRun>& runs, const std::vector<Algorithm>& algorithms,
+                       bool cpu_clock) {
+  const auto summary = summarize(runs, algorithms, cpu_clock);
+  std::size_t n_common = 0, n_inst = 0;
+  const auto common = summarizeCommon(runs, algorithms, cpu_clock, &n_common, &n_inst);
   std::ostringstream out;
-  out << "|";
-  for (const char* h : kHeader) out << " " << h << " |";
-  out << "\n|";
-  for (std::size_t i = 0; i < std::size(kHeader); ++i) out << (i == 0 ? "---|" : "---:|");
-  out << "\n";
-  for (const auto& r : rows(s)) {
-    out << "|";
-    for (const auto& c : r) out << " " << c << " |";
+  out << formatTable(summary) << legend(cpu_clock) << "\n";
+  if (algorithms.size() > 1) {
+    out << "\non the " << n_common << " of " << n_inst << " instances every algorithm solved:\n";
+    if (n_common > 0) out << textTable({std::begin(kCommonHeader), std::end(kCommonHeader)}, commonRows(common));
+  }
+  out << formatOptimalityCheck(summary);
+  return out.str();
+}
+
+std::string reportMarkdown(const std::vector<TilesRun>& runs,
+                           const std::vector<Algorithm>& algorithms, bool cpu_clock) {
+  const auto summary = summarize(runs, algorithms, cpu_clock);
+  std::size_t n_common = 0, n_inst = 0;
+  const auto common = summarizeCommon(runs, algorithms, cpu_clock, &n_common, &n_inst);
+  std::ostringstream out;
+  out << formatMarkdownTable(summary) << "\n" << legend(cpu_clock) << "\n";
+  if (algorithms.size() > 1) {
+    out << "\nOn the " << n_common << " of " << n_inst << " instances every algorithm solved:\n\n";
+    if (n_common > 0) {
+      out << markdownTable({std::begin(kCommonHeader), std::end(kCommonHeader)}, commonRows(common));
+    }
+  }
+  const std::string check = formatOptimalityCheck(summary);
+  if (!check.empty()) {
     out << "\n";
+    std::istringstream lines(check);
+    for (std::string l; std::getline(lines, l);) out << "- " << l << "\n";
   }
   return out.str();
+}
+
+bool writeBoundPlot(const std::string& path, const std::vector<TilesRun>& runs,
+                    const std::vector<Algorithm>& algorithms, double time_limit, bool cpu_clock,
+                    int board_size, std::size_t n_instances) {
+  const auto curves = medianBoundCurves(runs, algorithms, time_limit, cpu_clock);
+  const bool drawable = std::any_of(curves.begin(), curves.end(), [](const PlotSeries& c) {
+    return std::any_of(c.y.begin(), c.y.end(), [](double y) { return std::isfinite(y); });
+  });
+  if (!drawable) return false;
+  PlotOptions po;
+  po.title = std::to_string(board_size * board_size - 1) + "-puzzle: median certified bound vs time (" +
+             std::to_string(n_instances) + " instances)";
+  po.x_label = cpu_clock ? "CPU time [s] (log)" : "time [s] (log)";
+  po.y_label = "median certified bound";
+  po.log_x = true;
+  writeLinePlot(path, curves, po);
+  return true;
 }
 
 std::vector<PlotSeries> medianBoundCurves(const std::vector<TilesRun>& runs,

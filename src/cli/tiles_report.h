@@ -61,6 +61,31 @@ std::string formatOptimalityCheck(const std::vector<AlgorithmSummary>& s);
 /// The same as a Markdown table.
 std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s);
 
+/// Means over the instances that every algorithm solved, so that costs and bounds compare
+/// like with like.
+struct CommonSummary {
+  Algorithm algorithm = Algorithm::kAmhaStar;
+  double t_initial = 0, median_t_initial = 0, t_final = 0;
+  double cost_final = 0, certified_final = 0, eps_final = 0;
+};
+std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
+                                           const std::vector<Algorithm>& algorithms,
+                                           bool cpu_clock, std::size_t* n_common,
+                                           std::size_t* n_instances);
+
+/// The whole report, as the terminal text or as Markdown: the main table, the legend, the
+/// like-with-like table and the checks against known optimal lengths.
+std::string reportText(const std::vector<TilesRun>& runs, const std::vector<Algorithm>& algorithms,
+                       bool cpu_clock);
+std::string reportMarkdown(const std::vector<TilesRun>& runs,
+                           const std::vector<Algorithm>& algorithms, bool cpu_clock);
+
+/// Writes the median-bound plot; false (and nothing written) if no curve has a finite point.
+/// Throws std::runtime_error if the file cannot be written.
+bool writeBoundPlot(const std::string& path, const std::vector<TilesRun>& runs,
+                    const std::vector<Algorithm>& algorithms, double time_limit, bool cpu_clock,
+                    int board_size, std::size_t n_instances);
+
 /// Per algorithm: at each time t (log grid up to time_limit), the median over instances of the
 /// best certified bound found by t (infinite until half of the instances have a solution).
 /// Points are emitted where the median changes, plus one at the time limit.
