@@ -43,6 +43,15 @@ std::string rate(double v) {
   return buf;
 }
 
+// A mean of nominal bounds over the finite ones, noting how many were infinite.
+std::string epsCell(double mean, int finite, int total) {
+  if (total == 0) return "-";
+  if (finite == 0) return "inf";
+  std::string cell = num(mean, 2);
+  if (finite < total) cell += " (" + std::to_string(total - finite) + " inf)";
+  return cell;
+}
+
 const char* kHeader[] = {"algorithm", "success %",  "T_initial s", "T_final s", "eps_initial",
                          "eps_final", "cert_final", "cost_final",  "exp/s",     "exp/cpu-s",
                          "bytes/state", "states"};
@@ -52,17 +61,12 @@ std::vector<std::vector<std::string>> rows(const std::vector<AlgorithmSummary>& 
   for (const AlgorithmSummary& a : s) {
     const bool any = a.solved > 0;
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    std::string eps_init = any ? num(a.eps_initial, 2) : "-";
-    if (any && a.eps_initial_finite < a.solved) {
-      eps_init = a.eps_initial_finite > 0 ? num(a.eps_initial, 2) + " (" +
-                                                std::to_string(a.solved - a.eps_initial_finite) +
-                                                " inf)"
-                                          : "inf";
-    }
+    const std::string eps_init = epsCell(a.eps_initial, a.eps_initial_finite, a.solved);
     char success[48];
     std::snprintf(success, sizeof(success), "%.1f (%d/%d)", a.success_rate(), a.solved, a.runs);
     out.push_back({algorithmName(a.algorithm), success, num(any ? a.t_initial : nan),
-                   num(any ? a.t_final : nan), eps_init, num(any ? a.eps_final : nan, 2),
+                   num(any ? a.t_final : nan), eps_init,
+                   epsCell(a.eps_final, a.eps_final_finite, a.solved),
                    num(any ? a.certified_final : nan, 2), num(any ? a.cost_final : nan, 1),
                    rate(a.expansions_per_s), rate(a.expansions_per_cpu_s),
                    num(a.bytes_per_state, 1), num(a.peak_states, 0)});
@@ -141,7 +145,10 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
         a.eps_initial += first.nominal_bound;
         ++a.eps_initial_finite;
       }
-      a.eps_final += last.nominal_bound;
+      if (std::isfinite(last.nominal_bound)) {
+        a.eps_final += last.nominal_bound;
+        ++a.eps_final_finite;
+      }
       a.certified_final += last.certified_bound;
       a.cost_final += static_cast<double>(last.cost);
       t_init.push_back(t_first);
@@ -159,7 +166,8 @@ std::vector<AlgorithmSummary> summarize(const std::vector<TilesRun>& runs,
     if (a.solved > 0) {
       a.t_initial /= a.solved;
       a.t_final /= a.solved;
-      a.eps_final /= a.solved;
+      a.eps_final = a.eps_final_finite > 0 ? a.eps_final / a.eps_final_finite
+                                           : std::numeric_limits<double>::infinity();
       a.certified_final /= a.solved;
       a.cost_final /= a.solved;
       a.eps_initial = a.eps_initial_finite > 0 ? a.eps_initial / a.eps_initial_finite
@@ -224,7 +232,10 @@ std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
       c.t_final += r.solutionTime(sols.size() - 1, cpu_clock);
       c.cost_final += static_cast<double>(sols.back().cost);
       c.certified_final += sols.back().certified_bound;
-      c.eps_final += sols.back().nominal_bound;
+      if (std::isfinite(sols.back().nominal_bound)) {
+        c.eps_final += sols.back().nominal_bound;
+        ++c.eps_final_finite;
+      }
     }
     const double n = static_cast<double>(t_init.size());
     if (n > 0) {
@@ -233,7 +244,9 @@ std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
       c.t_final /= n;
       c.cost_final /= n;
       c.certified_final /= n;
-      c.eps_final /= n;
+      c.eps_final = c.eps_final_finite > 0 ? c.eps_final / c.eps_final_finite
+                                           : std::numeric_limits<double>::infinity();
+      c.n = static_cast<int>(n);
     }
     c.median_t_initial = median(t_init);
     out.push_back(c);
@@ -250,7 +263,8 @@ std::vector<std::vector<std::string>> commonRows(const std::vector<CommonSummary
   std::vector<std::vector<std::string>> out;
   for (const CommonSummary& c : s) {
     out.push_back({algorithmName(c.algorithm), num(c.t_initial), num(c.median_t_initial),
-                   num(c.t_final), num(c.eps_final, 2), num(c.certified_final, 2),
+                   num(c.t_final), epsCell(c.eps_final, c.eps_final_finite, c.n),
+                   num(c.certified_final, 2),
                    num(c.cost_final, 1)});
   }
   return out;

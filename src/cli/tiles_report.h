@@ -36,6 +36,9 @@ struct AlgorithmSummary {
   double t_initial = 0, t_final = 0;        ///< mean seconds to the first / last solution
   double eps_initial = 0, eps_final = 0;    ///< mean nominal bound of the first / last solution
   int eps_initial_finite = 0;               ///< solved runs whose first nominal bound is finite
+  int eps_final_finite = 0;                 ///< ... whose last nominal bound is finite
+                                            ///< (eps means are over the finite ones; ANA*'s E
+                                            ///< is infinite until its second solution)
   double certified_final = 0;               ///< mean certified bound of the last solution
   double cost_final = 0;                    ///< mean cost of the last solution
   double median_t_initial = 0, median_certified_final = 0;
@@ -67,6 +70,7 @@ struct CommonSummary {
   Algorithm algorithm = Algorithm::kAmhaStar;
   double t_initial = 0, median_t_initial = 0, t_final = 0;
   double cost_final = 0, certified_final = 0, eps_final = 0;
+  int n = 0, eps_final_finite = 0;
 };
 std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
                                            const std::vector<Algorithm>& algorithms,
