@@ -113,7 +113,7 @@ int runTiles(int argc, char** argv) {
   auto* random_opt = app.add_option("--random", o.random, "generate this many uniformly random solvable instances")
                          ->check(CLI::Range(1, 1000000));
   app.add_option("--seed", o.seed, "seed of the generated instances (default 1)");
-  app.add_option("--walk", o.walk, "with --random: random walks of this many moves from the goal instead")
+  auto* walk_opt = app.add_option("--walk", o.walk, "with --random: random walks of this many moves from the goal instead")
       ->check(CLI::Range(1, 100000000));
   auto* file_opt = app.add_option("--instances", o.instances_file,
                                   "read instances from FILE (Korf format: id optimal md tiles...)");
@@ -153,6 +153,9 @@ int runTiles(int argc, char** argv) {
     }
     if (random_opt->count() > 0 && size_opt->count() == 0) {
       throw CLI::ValidationError("--random needs --size");
+    }
+    if (walk_opt->count() > 0 && random_opt->count() == 0) {
+      throw CLI::ValidationError("--walk needs --random COUNT (and --size)");
     }
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;

@@ -59,6 +59,7 @@ grep -q "unsolvable.txt:1: instance '1' is unsolvable" "$tmp/err" || fail "messa
 expect 8 --instances "$tmp/missing.txt"
 expect 8 --instances "$tmp/inst.txt" --size 5
 expect 2 --random 3
+expect 2 --size 4 --walk 30
 expect 2 --size 4 --random 3 --algorithms amha,dijkstra
 expect 2 --size 4 --random 3 --w1 0.5
 expect 2 --size 10 --random 3
