@@ -33,6 +33,9 @@ void validateMap(const GridMap& m) {
     fail(kind, "map: resolution " + str(m.resolution) + " m is outside [" + str(kMinResolution) + ", " + str(kMaxResolution) + "]");
   }
   if (!std::isfinite(m.origin_x) || !std::isfinite(m.origin_y) || !std::isfinite(m.origin_yaw)) fail(kind, "map: origin is not finite");
+  if (std::fabs(m.origin_x) > kMaxOriginMagnitude || std::fabs(m.origin_y) > kMaxOriginMagnitude) {
+    fail(kind, "map: origin (" + str(m.origin_x) + ", " + str(m.origin_y) + ") is farther than " + str(kMaxOriginMagnitude) + " m");
+  }
 }
 
 void validateConfig(const LatticeConfig& c) {

@@ -46,6 +46,11 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
   if (!std::isfinite(origin_x) || !std::isfinite(origin_y) || !std::isfinite(origin_yaw)) {
     fail("origin is not finite");
   }
+  if (std::fabs(origin_x) > kMaxOriginMagnitude || std::fabs(origin_y) > kMaxOriginMagnitude) {
+    std::ostringstream m;
+    m << "origin (" << origin_x << ", " << origin_y << ") is farther than " << kMaxOriginMagnitude << " m";
+    fail(m.str());
+  }
   if (data == nullptr && data_size > 0) fail("null data");
   if (data_size != cells) {
     std::ostringstream m;

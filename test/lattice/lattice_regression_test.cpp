@@ -158,6 +158,36 @@ TEST(OccupancyRegression, ResolutionsOutsideTheSaneRangeAreRefused) {
   }
 }
 
+// occupancy fuzzer, regression-huge-origin: a map at origin x = 2.7e161 m was accepted; a
+// double cannot place cells there (the spacing of doubles near it is ~1e145 m), so every pose
+// of a path came out the same and the planner refused its own cell centres as off the map.
+TEST(OccupancyRegression, OriginsTooFarAwayAreRefused) {
+  const std::int8_t cells[4] = {0, 0, 0, 0};
+  for (double x : {2.68e161, -1.5e8}) {
+    try {
+      gridMapFromOccupancy(2, 2, 0.05, x, 0, 0, cells, 4, OccupancyConversion());
+      ADD_FAILURE() << x;
+    } catch (const LatticeError& e) {
+      EXPECT_NE(std::string(e.what()).find("is farther than 1e+08 m"), std::string::npos) << e.what();
+    }
+    auto map = test::randomMap(16, 4, 0.05, 1, 0, 0);
+    map->origin_y = x;
+    EXPECT_THROW(LatticePlanner(map, LatticeConfig()), LatticeError) << x;
+  }
+  // UTM-sized origins are fine, and poses round-trip there.
+  auto map = test::randomMap(40, 40, 0.05, 1, 0, 0);
+  map->origin_x = 500000.0;
+  map->origin_y = 9999000.0;
+  LatticeConfig c;
+  c.robot_radius = 0.05;
+  LatticePlanner planner(map, c);
+  const Pose2D s{500000.5, 9999000.5, 0.0}, g{500001.5, 9999001.2, 1.0};
+  EXPECT_EQ(planner.checkQuery(s, g, nullptr), QueryError::kNone);
+  const PlanResult r = planner.plan(s, g, defaultConfig(Algorithm::kAStar), SearchLimits());
+  ASSERT_FALSE(r.solutions.empty());
+  EXPECT_NEAR(r.solutions.back().poses.back().x, 500001.525, 1e-6);
+}
+
 }  // namespace
 }  // namespace lattice
 }  // namespace amha
