@@ -10,43 +10,31 @@
 #include <cstdlib>
 
 #include "../search/test_graphs.h"
+#include "fuzz_support.h"
 
-namespace {
-
-struct Bytes {
-  const std::uint8_t* p;
-  std::size_t n;
-  std::uint8_t next() {
-    if (n == 0) return 0;
-    --n;
-    return *p++;
-  }
-};
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace amha;
-  Bytes in{data, size};
+  fuzz::Bytes in{data, size};
   testing::ExplicitGraph g;
-  const int n = 2 + in.next() % 40;
-  const int m = in.next() * 2;
+  const int n = 2 + in.u8() % 40;
+  const int m = in.u8() * 2;
   g.adj.assign(n, {});
   for (int k = 0; k < m && in.n >= 3; ++k) {
-    const StateId a = in.next() % n, b = in.next() % n;
-    g.adj[a].push_back(Edge{b, 1 + static_cast<Cost>(in.next())});
+    const StateId a = in.u8() % n, b = in.u8() % n;
+    g.adj[a].push_back(Edge{b, 1 + static_cast<Cost>(in.u8())});
   }
   g.s_start = 0;
   g.s_goal = static_cast<StateId>(n - 1);
-  g.n_heuristics = 1 + in.next() % 6;
-  const double scale = (in.next() % 5) / 4.0;
+  g.n_heuristics = 1 + in.u8() % 6;
+  const double scale = (in.u8() % 5) / 4.0;
   const auto d = testing::distancesToGoal(g);
   g.h.assign(n, std::vector<HeuristicValue>(g.n_heuristics, 0));
   for (int s = 0; s < n; ++s) {
     g.h[s][0] = d[s] >= kInfiniteCost ? kInfiniteHeuristic
                                        : static_cast<HeuristicValue>(std::floor(scale * d[s]));
     for (std::size_t i = 1; i < g.n_heuristics; ++i) {
-      const std::uint8_t b = in.next();
+      const std::uint8_t b = in.u8();
       g.h[s][i] = b == 255 ? kInfiniteHeuristic : static_cast<HeuristicValue>(b) * 7;
     }
   }
