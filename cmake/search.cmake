@@ -15,6 +15,7 @@ amha_add_gtest(amha_search_tests
     test/search/indexed_heap_test.cpp
     test/search/optimality_test.cpp
     test/search/limits_test.cpp
+    test/search/monotone_cost_test.cpp
   LIBS amha_search)
 
 if(AMHA_FUZZ)

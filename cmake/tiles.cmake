@@ -17,5 +17,10 @@ amha_add_gtest(amha_tiles_tests
   LIBS amha_tiles)
 
 # `amha tiles`: the paper's tile experiments.
-target_sources(amha PRIVATE src/cli/tiles_command.cpp src/cli/tiles_report.cpp)
+target_sources(amha PRIVATE src/cli/tiles_command.cpp src/cli/tiles_report.cpp
+                            src/cli/tiles_report_command.cpp)
 target_link_libraries(amha PRIVATE amha_tiles)
+
+# `amha tiles` end to end (exit codes, JSON, instance files).
+add_test(NAME amha_tiles_cli
+         COMMAND ${CMAKE_SOURCE_DIR}/test/tiles/tiles_cli_test.sh $<TARGET_FILE:amha>)

@@ -28,8 +28,14 @@ struct Axis {
   std::vector<double> ticks() const {
     std::vector<double> t;
     if (log) {
+      // Decades; over a narrow range (fewer than 3 decades) also 2x and 5x each decade.
+      const bool narrow = std::log10(hi) - std::log10(lo) < 3.0;
       for (double d = std::pow(10.0, std::floor(std::log10(lo))); d <= hi * 1.0001; d *= 10) {
-        if (d >= lo * 0.9999) t.push_back(d);
+        for (double m : {1.0, 2.0, 5.0}) {
+          if (m != 1.0 && !narrow) continue;
+          const double v = d * m;
+          if (v >= lo * 0.9999 && v <= hi * 1.0001) t.push_back(v);
+        }
       }
       if (t.size() < 2) t = {lo, hi};
       return t;
@@ -82,7 +88,7 @@ void writeLinePlot(const std::string& png_path, const std::vector<PlotSeries>& s
                    const PlotOptions& o) {
   cv::Mat img(o.height, o.width, CV_8UC3, cv::Scalar(255, 255, 255));
   const Axis ax = makeAxis(series, true, o.log_x), ay = makeAxis(series, false, o.log_y);
-  const int left = 90, right = o.width - 200, top = 50, bottom = o.height - 70;
+  const int left = 90, right = o.width - 200, top = 64, bottom = o.height - 70;
   const auto font = cv::FONT_HERSHEY_SIMPLEX;
   const cv::Scalar black(0, 0, 0), grid(225, 225, 225);
 
@@ -97,7 +103,7 @@ void writeLinePlot(const std::string& png_path, const std::vector<PlotSeries>& s
     cv::putText(img, fmt(t), {8, py + 5}, font, 0.45, black, 1, cv::LINE_AA);
   }
   cv::rectangle(img, {left, top}, {right, bottom}, black, 1);
-  cv::putText(img, o.title, {left, 30}, font, 0.65, black, 1, cv::LINE_AA);
+  cv::putText(img, o.title, {left, 26}, font, 0.65, black, 1, cv::LINE_AA);
   cv::putText(img, o.x_label, {(left + right) / 2 - 60, o.height - 25}, font, 0.55, black, 1,
               cv::LINE_AA);
   cv::putText(img, o.y_label, {8, top - 12}, font, 0.5, black, 1, cv::LINE_AA);

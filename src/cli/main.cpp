@@ -1,4 +1,5 @@
 // `amha <command> [args]`: the project's command line; each command registers itself.
+#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -19,9 +20,10 @@ std::vector<Command>& commandRegistry() {
 namespace {
 void usage(std::ostream& out) {
   out << "usage: amha <command> [options]   (amha <command> --help for its options)\n\ncommands:\n";
+  std::size_t width = 0;
+  for (const auto& c : amha::cli::commandRegistry()) width = std::max(width, std::strlen(c.name));
   for (const auto& c : amha::cli::commandRegistry()) {
-    out << "  " << c.name << std::string(10 - std::min<std::size_t>(9, std::strlen(c.name)), ' ')
-        << c.summary << "\n";
+    out << "  " << c.name << std::string(width + 3 - std::strlen(c.name), ' ') << c.summary << "\n";
   }
 }
 }  // namespace

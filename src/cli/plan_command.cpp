@@ -1,4 +1,5 @@
 // `amha plan`: plan on a map with the lattice planner, printing every improved solution.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -71,6 +72,7 @@ int planMain(int argc, char** argv) {
   LoadedLattice loaded;
   lattice::Pose2D start, goal;
   std::unique_ptr<lattice::LatticePlanner> planner;
+  double setup_s = 0.0;
   try {
     loaded = loadLattice(lo);
     if (start_text.empty() || goal_text.empty()) {
@@ -81,7 +83,9 @@ int planMain(int argc, char** argv) {
     }
     start = start_text.empty() ? loaded.env.start : parsePose(start_text, "--start");
     goal = goal_text.empty() ? loaded.env.goal : parsePose(goal_text, "--goal");
+    const auto t0 = std::chrono::steady_clock::now();
     planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config));
+    setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha plan: " << e.what() << "\n";
     return exitCodeFor(e);
@@ -90,8 +94,9 @@ int planMain(int argc, char** argv) {
     return kExitUsage;
   }
   const lattice::GridMap& map = *loaded.map;
-  std::printf("map %s: %d x %d cells of %.3f m; algorithm %s\n", lo.map_file.c_str(), map.width, map.height,
-              map.resolution, algorithmName(algorithm));
+  std::printf("map %s: %d x %d cells of %.3f m; algorithm %s; planner setup (primitives, footprint sweeps, "
+              "clearance, openings) %.3f s\n", lo.map_file.c_str(), map.width, map.height, map.resolution,
+              algorithmName(algorithm), setup_s);
   std::printf("start (%.3f, %.3f, %.3f)  goal (%.3f, %.3f, %.3f)\n", start.x, start.y, start.theta, goal.x, goal.y,
               goal.theta);
 

@@ -10,6 +10,9 @@
 #include <sstream>
 #include <thread>
 
+#include <pthread.h>
+#include <time.h>
+
 #include <CLI/CLI.hpp>
 
 #include "amha_planner/search/planner.h"
@@ -33,6 +36,7 @@ struct Options {
   std::string instances_file;
   std::string algorithms = "amha,mha,ara,ana";
   double time_limit = 10.0;
+  std::string clock = "wall";
   std::uint64_t max_expansions = 0;
   double w1 = 5.0, w2 = 5.0, dw1 = 0.5, dw2 = 0.5;
   double eps = 25.0, deps = 3.0;
@@ -73,6 +77,12 @@ std::string fmtBound(double b) {
   return s.str();
 }
 
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 std::string fmtSeconds(double t) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.3f", t);
@@ -103,12 +113,16 @@ int runTiles(int argc, char** argv) {
   auto* random_opt = app.add_option("--random", o.random, "generate this many uniformly random solvable instances")
                          ->check(CLI::Range(1, 1000000));
   app.add_option("--seed", o.seed, "seed of the generated instances (default 1)");
-  app.add_option("--walk", o.walk, "with --random: random walks of this many moves from the goal instead")
+  auto* walk_opt = app.add_option("--walk", o.walk, "with --random: random walks of this many moves from the goal instead")
       ->check(CLI::Range(1, 100000000));
   auto* file_opt = app.add_option("--instances", o.instances_file,
                                   "read instances from FILE (Korf format: id optimal md tiles...)");
   app.add_option("--algorithms", o.algorithms, "comma-separated: amha,mha,ara,ana,wastar,astar (default amha,mha,ara,ana)");
   app.add_option("--time-limit", o.time_limit, "seconds per run (default 10)")->check(CLI::PositiveNumber);
+  app.add_option("--clock", o.clock,
+                 "wall (default) or cpu: measure the time limit and the reported times on the "
+                 "CPU clock of the searching thread, for fair numbers on a shared machine")
+      ->check(CLI::IsMember({"wall", "cpu"}));
   app.add_option("--max-expansions", o.max_expansions, "expansions per run (default: no cap)");
   app.add_option("--w1", o.w1, "A-MHA*/MHA* initial w1 (default 5)");
   app.add_option("--w2", o.w2, "A-MHA*/MHA* initial w2 (default 5)");
@@ -139,6 +153,9 @@ int runTiles(int argc, char** argv) {
     }
     if (random_opt->count() > 0 && size_opt->count() == 0) {
       throw CLI::ValidationError("--random needs --size");
+    }
+    if (walk_opt->count() > 0 && random_opt->count() == 0) {
+      throw CLI::ValidationError("--walk needs --random COUNT (and --size)");
     }
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
@@ -191,6 +208,7 @@ int runTiles(int argc, char** argv) {
     }
   }
 
+  const bool cpu_clock = o.clock == "cpu";
   const auto weights = tiles::randomTermWeights(static_cast<std::size_t>(o.heuristics), o.heuristic_seed);
   const std::size_t per_run_bytes =
       static_cast<std::size_t>(o.memory_limit_gb * double(1ull << 30) / o.jobs);
@@ -215,24 +233,54 @@ int runTiles(int argc, char** argv) {
                     ii + 1, n_inst, inst.id.c_str(), algorithmName(alg));
       auto problem = tiles::TilesProblem::create(inst.start, weights);
       auto planner = makePlanner(configFor(alg, o));
-      SearchLimits limits;
-      limits.time_limit_s = o.time_limit;
-      if (o.max_expansions > 0) limits.max_expansions = o.max_expansions;
-      limits.max_memory_bytes = per_run_bytes;
-      SolutionCallback cb;
-      if (!o.quiet) {
-        cb = [&](const Solution& s) {
-          std::lock_guard<std::mutex> lock(io);
-          std::cerr << tag << "  solution " << s.iteration + 1 << ": cost " << s.cost
-                    << "  bound " << fmtBound(s.nominal_bound) << " (certified "
-                    << fmtBound(s.certified_bound) << ")  at " << fmtSeconds(s.elapsed_s) << " s\n";
-        };
-      }
       TilesRun& run = runs[task];
       run.instance = inst.id;
       run.algorithm = alg;
       run.optimal = inst.optimal;
+      SearchLimits limits;
+      limits.time_limit_s = o.time_limit;
+      if (o.max_expansions > 0) limits.max_expansions = o.max_expansions;
+      limits.max_memory_bytes = per_run_bytes;
+      const double cpu0 = threadCpuSeconds();
+      SolutionCallback cb = [&](const Solution& s) {
+        run.solution_cpu_s.push_back(threadCpuSeconds() - cpu0);
+        if (o.quiet) return;
+        std::lock_guard<std::mutex> lock(io);
+        std::cerr << tag << "  solution " << s.iteration + 1 << ": cost " << s.cost
+                  << "  bound " << fmtBound(s.nominal_bound) << " (certified "
+                  << fmtBound(s.certified_bound) << ")  at "
+                  << fmtSeconds(cpu_clock ? run.solution_cpu_s.back() : s.elapsed_s) << " s\n";
+      };
+      // On the CPU clock a watchdog cancels the search when this thread has used its time;
+      // the wall-clock limit stays as a safety net for a starved process.
+      std::atomic<bool> cancel{false}, done{false};
+      std::thread watchdog;
+      if (cpu_clock) {
+        limits.cancel = &cancel;
+        limits.time_limit_s = 20 * o.time_limit + 60;
+        clockid_t cid;
+        pthread_getcpuclockid(pthread_self(), &cid);
+        watchdog = std::thread([&, cid] {
+          while (!done) {
+            timespec ts{};
+            clock_gettime(cid, &ts);
+            if (static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec) - cpu0 >=
+                o.time_limit) {
+              cancel = true;
+              return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+          }
+        });
+      }
       run.result = planner->search(*problem, limits, cb);
+      run.cpu_s = threadCpuSeconds() - cpu0;
+      done = true;
+      if (watchdog.joinable()) watchdog.join();
+      // The cancel flag is ours and only the CPU-time budget sets it.
+      if (cpu_clock && run.result.status == SearchStatus::kCancelled) {
+        run.result.status = SearchStatus::kTimeLimit;
+      }
       for (Solution& s : run.result.solutions) {
         const std::string err = verify(*problem, inst.start, s);
         if (!err.empty()) {
@@ -254,7 +302,8 @@ int runTiles(int argc, char** argv) {
         } else {
           std::cerr << "no solution";
         }
-        std::cerr << ", " << r.expansions << " expansions in " << fmtSeconds(r.elapsed_s) << " s, "
+        std::cerr << ", " << r.expansions << " expansions in " << fmtSeconds(r.elapsed_s)
+                  << " s (CPU " << fmtSeconds(run.cpu_s) << " s), "
                   << r.peak_states << " states, " << (r.peak_memory_bytes >> 20) << " MiB\n";
       }
     }
@@ -268,20 +317,24 @@ int runTiles(int argc, char** argv) {
     return kExitInternal;
   }
 
-  const auto summary = summarize(runs, algorithms);
+  const auto summary = summarize(runs, algorithms, cpu_clock);
   std::cout << instances.size() << " instance(s), board " << instances.front().start.size << "x"
-            << instances.front().start.size << ", time limit " << o.time_limit << " s, "
+            << instances.front().start.size << ", time limit " << o.time_limit << " s ("
+            << (cpu_clock ? "CPU" : "wall") << " clock), "
             << o.heuristics << " inadmissible heuristic(s) (seed " << o.heuristic_seed << ")\n"
-            << formatTable(summary)
-            << "means over solved runs; exp/s = all expansions / all search time; "
-               "bytes/state = peak memory (search + domain) / stored states\n";
+            << reportText(runs, algorithms, cpu_clock);
 
   try {
     if (!o.json.empty()) {
       nlohmann::json jruns = nlohmann::json::array();
       for (const TilesRun& r : runs) {
-        jruns.push_back(runToJson(r.instance, r.algorithm, r.result,
-                                  r.optimal ? std::optional<Cost>(*r.optimal) : std::nullopt));
+        nlohmann::json j = runToJson(r.instance, r.algorithm, r.result,
+                                     r.optimal ? std::optional<Cost>(*r.optimal) : std::nullopt);
+        j["cpu_s"] = r.cpu_s;  // beyond the shared schema: CPU time of the searching thread
+        for (std::size_t k = 0; k < r.solution_cpu_s.size() && k < j["solutions"].size(); ++k) {
+          j["solutions"][k]["cpu_s"] = r.solution_cpu_s[k];
+        }
+        jruns.push_back(std::move(j));
       }
       nlohmann::json extra;
       std::ostringstream cmd;
@@ -294,7 +347,7 @@ int runTiles(int argc, char** argv) {
           {"size", instances.front().start.size},
           {"instances_file", o.instances_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.instances_file)},
           {"random", o.random}, {"seed", o.seed}, {"walk", o.walk},
-          {"algorithms", o.algorithms}, {"time_limit_s", o.time_limit},
+          {"algorithms", o.algorithms}, {"time_limit_s", o.time_limit}, {"clock", o.clock},
           {"max_expansions", o.max_expansions > 0 ? nlohmann::json(o.max_expansions) : nlohmann::json(nullptr)},
           {"w1", o.w1}, {"w2", o.w2}, {"dw1", o.dw1}, {"dw2", o.dw2},
           {"ara_eps", o.eps}, {"ara_deps", o.deps}, {"wastar_weight", o.weight},
@@ -317,7 +370,11 @@ int runTiles(int argc, char** argv) {
                         {"t_final_s", s.t_final}, {"eps_initial", s.eps_initial},
                         {"eps_final", s.eps_final}, {"certified_final", s.certified_final},
                         {"cost_final", s.cost_final}, {"expansions_per_s", s.expansions_per_s},
-                        {"bytes_per_state", s.bytes_per_state}, {"proven_optimal", s.proven_optimal}});
+                        {"expansions_per_cpu_s", s.expansions_per_cpu_s},
+                        {"bytes_per_state", s.bytes_per_state}, {"proven_optimal", s.proven_optimal},
+                        {"with_known_optimal", s.with_known_optimal},
+                        {"at_known_optimal", s.at_known_optimal},
+                        {"below_known_optimal", s.below_known_optimal}});
       }
       for (auto& j : jsum) {
         for (auto it = j.begin(); it != j.end(); ++it) {
@@ -329,26 +386,12 @@ int runTiles(int argc, char** argv) {
     }
     if (!o.markdown.empty()) {
       std::ofstream md(o.markdown);
-      md << formatMarkdownTable(summary);
+      md << reportMarkdown(runs, algorithms, cpu_clock);
       if (!md) throw std::runtime_error("cannot write " + o.markdown);
     }
-    if (!o.plot.empty()) {
-      PlotOptions po;
-      const int n = instances.front().start.size;
-      po.title = std::to_string(n * n - 1) + "-puzzle: median certified bound vs time (" +
-                 std::to_string(instances.size()) + " instances)";
-      po.x_label = "time [s] (log)";
-      po.y_label = "median certified bound";
-      po.log_x = true;
-      const auto curves = medianBoundCurves(runs, algorithms, o.time_limit);
-      const bool drawable = std::any_of(curves.begin(), curves.end(), [](const PlotSeries& c) {
-        return std::any_of(c.y.begin(), c.y.end(), [](double y) { return std::isfinite(y); });
-      });
-      if (drawable) {
-        writeLinePlot(o.plot, curves, po);
-      } else {
-        std::cerr << "amha tiles: no plot written: no algorithm solved half of the instances\n";
-      }
+    if (!o.plot.empty() && !writeBoundPlot(o.plot, runs, algorithms, o.time_limit, cpu_clock,
+                                           instances.front().start.size, instances.size())) {
+      std::cerr << "amha tiles: no plot written: no algorithm solved half of the instances\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "amha tiles: " << e.what() << "\n";

@@ -94,8 +94,7 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
     if (!(p.cost_multiplier > 0.0)) t.fail("additionalactioncostmult " + str(p.cost_multiplier) + " must be positive");
     if (!set.uniform) {
       t.expect("turning_radius:");
-      p.turning_radius = t.number("turning_radius");
-      if (p.turning_radius < 0.0) t.fail("turning_radius must not be negative");
+      p.turning_radius = t.number("turning_radius");  // signed in SBPL's files: < 0 turns right
     }
     t.expect("intermediateposes:");
     const long count = t.integer("the number of intermediate poses");

@@ -229,7 +229,7 @@ PrimitiveSet generatePrimitives(const PrimitiveGeneratorOptions& o) {
         p.end_dy = a.end.y;
         p.end_heading = h1;
         p.cost_multiplier = backward ? o.reverse_multiplier * o.arc_multiplier : o.arc_multiplier;
-        p.turning_radius = a.radius;
+        p.turning_radius = side * a.radius;  // signed as in SBPL's files: negative turns right
         p.poses = samplePath(phi + offset, a.pieces, spacing, -offset);
         out.push_back(std::move(p));
       }
@@ -262,6 +262,7 @@ PrimitiveSet generatePrimitives(const PrimitiveGeneratorOptions& o) {
       p.end_dx = e.x;
       p.end_dy = e.y;
       p.end_heading = indexOf(g.apply(dirs[bp.end_heading]));
+      if (g.reflect) p.turning_radius = -p.turning_radius;  // a mirror swaps left and right
       for (Pose2D& q : p.poses) q = g.apply(q);
       p.poses.front() = {0.0, 0.0, set.heading_angles[h]};
       p.poses.back() = {e.x * res, e.y * res, set.heading_angles[p.end_heading]};

@@ -72,6 +72,12 @@ std::uint32_t statusForQueryError(lat::QueryError e) {
   return Status::INTERNAL_ERROR;
 }
 
+/// What a client is told when the request queue is full.
+std::string busyMessage(int max_queued) {
+  return "busy: one request is planning and " + std::to_string(max_queued) +
+         " are waiting (~max_queued_requests); try again later";
+}
+
 std::string fmt(double v, int precision = 3) {
   std::ostringstream s;
   s.precision(precision);
@@ -418,9 +424,7 @@ Plan::Response PlannerServer::runBlocking(const Request& request) {
     Plan::Response busy;
     busy.request_id = id;
     busy.status = Status::BUSY;
-    busy.message = "busy: one request is planning and " +
-                   std::to_string(params_.max_queued_requests) +
-                   " are waiting (~max_queued_requests); try again later";
+    busy.message = busyMessage(params_.max_queued_requests);
     busy.path.header.frame_id = params_.global_frame;
     return busy;
   }
@@ -513,9 +517,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
     PlanAnytimeResult busy;
     busy.request_id = id;
     busy.status = Status::BUSY;
-    busy.message = "busy: one request is planning and " +
-                   std::to_string(params_.max_queued_requests) +
-                   " are waiting (~max_queued_requests); try again later";
+    busy.message = busyMessage(params_.max_queued_requests);
     busy.path.header.frame_id = params_.global_frame;
     ROS_WARN("amha_planner: plan_anytime request %u: BUSY", id);
     goal.setRejected(busy, busy.message);

@@ -81,6 +81,15 @@ void SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
     cost += best;
   }
   sol.cost = cost;
+  // Keep the best path: a new parent chain is bounded by the new, lower g(goal), but can still
+  // cost more than the previous chain's true sum (which may have been below its g(goal)).
+  // Re-publishing the cheaper previous path keeps costs non-increasing; the new bounds hold for
+  // it too, since they bound g(goal) and LB, and its cost is lower still.
+  if (!result_.solutions.empty() && result_.solutions.back().cost < sol.cost) {
+    sol.path = result_.solutions.back().path;
+    sol.cost = result_.solutions.back().cost;
+  }
+  cost = sol.cost;
   sol.nominal_bound = nominal_bound;
   // certified = cost / LB, where LB <= optimal; clamp to [1, nominal]: the nominal bound is
   // proven by the algorithm's own theorem, so the smaller of the two is still a valid bound.

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <random>
 
+#include "line_conflict.h"
+
 namespace amha {
 namespace tiles {
 
@@ -19,25 +21,16 @@ int manhattanDistance(const Board& b) {
 }
 
 int lineConflictRemovals(const std::uint8_t* tiles, int n, bool row, int index) {
-  // The tiles of the line that belong in it, in line order, form a sequence of distinct goal
-  // offsets; the fewest removals leaving no reversed pair is its length minus its longest
-  // increasing subsequence. Patience sorting with the pile tops as a bit set: each value
-  // replaces the smallest top above it (or starts a pile); the pile count is the LIS length.
-  unsigned tops = 0;
-  int in_line = 0;
-  for (int k = 0; k < n; ++k) {
-    const int p = row ? index * n + k : k * n + index;
-    const int t = tiles[p];
-    if (t == 0) continue;
-    const int goal_line = row ? t / n : t % n;
-    if (goal_line != index) continue;
-    const unsigned v = static_cast<unsigned>(row ? t % n : t / n);
-    ++in_line;
-    const unsigned above = tops & ~((2u << v) - 1u);
-    tops ^= above & (0u - above);  // drop the lowest top above v (no-op if none)
-    tops |= 1u << v;
+  switch (n) {
+    case 3: return detail::lineRemovals<3>(tiles, row, index);
+    case 4: return detail::lineRemovals<4>(tiles, row, index);
+    case 5: return detail::lineRemovals<5>(tiles, row, index);
+    case 6: return detail::lineRemovals<6>(tiles, row, index);
+    case 7: return detail::lineRemovals<7>(tiles, row, index);
+    case 8: return detail::lineRemovals<8>(tiles, row, index);
+    case 9: return detail::lineRemovals<9>(tiles, row, index);
+    default: return 0;
   }
-  return in_line - __builtin_popcount(tops);
 }
 
 int linearConflict(const Board& b) {
@@ -74,10 +67,6 @@ std::vector<TermWeights> randomTermWeights(std::size_t count, std::uint32_t seed
   return out;
 }
 
-std::uint32_t weightedValue(const HeuristicTerms& t, const TermWeights& w) {
-  const double v = w.md * t.md + w.lc * t.lc + w.mt * t.mt;
-  return static_cast<std::uint32_t>(std::lround(v));
-}
 
 }  // namespace tiles
 }  // namespace amha

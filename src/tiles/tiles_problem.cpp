@@ -5,6 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "line_conflict.h"
+
 namespace amha {
 namespace tiles {
 
@@ -21,13 +23,16 @@ constexpr int infoLcHalf(std::uint32_t i) { return static_cast<int>((i >> 10) & 
 constexpr int infoMt(std::uint32_t i) { return static_cast<int>((i >> 18) & 127u); }
 constexpr int infoBlank(std::uint32_t i) { return static_cast<int>(i >> 25); }
 
-// W 64-bit words a board, B bits a tile.
-template <int W, int B>
+// The N x N puzzle: B bits a tile, W 64-bit words a board. N is a template parameter so that
+// divisions by N compile to multiplications and the per-tile loops unroll.
+template <int N>
 class TilesSpace final : public TilesProblem {
  public:
+  static constexpr int B = N <= 4 ? 4 : N == 5 ? 5 : N <= 8 ? 6 : 7;
+  static constexpr int W = (N * N * B + 63) / 64;
+
   TilesSpace(const Board& start, std::vector<TermWeights> weights)
-      : TilesProblem(start.size, std::move(weights)), n_(start.size), n2_(start.size * start.size) {
-    static_assert(B <= 8 && W >= 1, "layout");
+      : TilesProblem(start.size, std::move(weights)) {
     for (int p = 0; p < n2_; ++p) {
       const int r = p / n_, c = p % n_;
       int k = 0;
@@ -40,7 +45,7 @@ class TilesSpace final : public TilesProblem {
         dist_[t * n2_ + p] = static_cast<std::uint8_t>(std::abs(r - t / n_) + std::abs(c - t % n_));
       }
     }
-    slots_.assign(std::size_t{1} << 12, kEmpty);
+    setTableSize(12);
     const Board goal = goalBoard(n_);
     start_ = insertBoard(start);
     goal_ = insertBoard(goal);
@@ -56,25 +61,17 @@ class TilesSpace final : public TilesProblem {
     std::memcpy(parent, words(s), sizeof(parent));
     const std::uint32_t info = infoOf(s);
     const int b = infoBlank(info);
-    unpack(parent, board_);
     for (int k = 0; k < num_neighbours_[b]; ++k) {
       const int p = neighbours_[b][k];
-      const int t = board_[p];
+      const int t = static_cast<int>(getField(parent, p));
+      // Field b holds 0 and field p holds t: XOR-ing t into both moves the tile.
       std::memcpy(child, parent, sizeof(child));
-      setField(child, b, static_cast<std::uint32_t>(t));
-      setField(child, p, 0);
+      xorField(child, b, static_cast<std::uint64_t>(t));
+      xorField(child, p, static_cast<std::uint64_t>(t));
       const std::uint64_t h = hashWords(child);
-      std::size_t slot = h & mask_;
-      StateId id = kEmpty;
-      for (;; slot = (slot + 1) & mask_) {
-        const StateId cand = slots_[slot];
-        if (cand == kEmpty) break;
-        if (std::memcmp(words(cand), child, sizeof(child)) == 0) {
-          id = cand;
-          break;
-        }
-      }
-      if (id == kEmpty) id = insertAt(slot, child, childInfo(info, b, p, t));
+      std::size_t slot;
+      StateId id = probe(child, h, &slot);
+      if (id == kEmpty) id = insertAt(slot, h, child, childInfo(parent, info, b, p, t));
       out.push_back(Edge{id, 1});
     }
   }
@@ -137,6 +134,11 @@ class TilesSpace final : public TilesProblem {
       w[wi + 1] = (w[wi + 1] & ~m) | (static_cast<std::uint64_t>(val) >> (64 - off));
     }
   }
+  static void xorField(std::uint64_t* w, int i, std::uint64_t val) {
+    const int bit = i * B, wi = bit >> 6, off = bit & 63;
+    w[wi] ^= val << off;
+    if (off + B > 64) w[wi + 1] ^= val >> (64 - off);
+  }
   void unpack(const std::uint64_t* w, std::uint8_t* tiles) const {
     for (int i = 0; i < n2_; ++i) tiles[i] = static_cast<std::uint8_t>(getField(w, i));
   }
@@ -153,26 +155,27 @@ class TilesSpace final : public TilesProblem {
   }
 
   // MD, LC and MT of the child reached by moving tile t from p into the blank at b, from the
-  // parent's values (board_ holds the parent).
-  std::uint32_t childInfo(std::uint32_t info, int b, int p, int t) {
+  // parent's values and packed board.
+  std::uint32_t childInfo(const std::uint64_t* parent, std::uint32_t info, int b, int p, int t) const {
     const int md = infoMd(info) + dist_[t * n2_ + b] - dist_[t * n2_ + p];
     const int mt = infoMt(info) + (t != b) - (t != p);
     int lc_half = infoLcHalf(info);
-    const bool horizontal = (b / n_) == (p / n_);
-    // A horizontal move keeps the order within the row and changes the column contents of
-    // col(p) and col(b), but only t's goal column can gain or lose a tile that belongs in it.
-    const int goal_line = horizontal ? t % n_ : t / n_;
-    const int from_line = horizontal ? p % n_ : p / n_;
-    const int to_line = horizontal ? b % n_ : b / n_;
+    // A horizontal move keeps the order of the tiles within the row; it changes the contents
+    // of columns col(p) and col(b), and only t's goal column can gain or lose a tile that
+    // belongs in it (vertical moves: the same with rows and columns swapped). Both boards hold
+    // t or the blank at the same offset of that line, and agree on the rest of it.
+    const bool horizontal = (b / N) == (p / N);
+    const int goal_line = horizontal ? t % N : t / N;
+    const int from_line = horizontal ? p % N : p / N;
+    const int to_line = horizontal ? b % N : b / N;
     if (goal_line == from_line || goal_line == to_line) {
-      const bool row = !horizontal;
-      const int before = lineConflictRemovals(board_, n_, row, goal_line);
-      board_[b] = static_cast<std::uint8_t>(t);
-      board_[p] = 0;
-      const int after = lineConflictRemovals(board_, n_, row, goal_line);
-      board_[p] = static_cast<std::uint8_t>(t);
-      board_[b] = 0;
-      lc_half += after - before;
+      const bool row = !horizontal;  // the changed line is a row for vertical moves
+      const int at = horizontal ? p / N : p % N;  // offset of t (or the blank) in that line
+      auto get = [&](int k) {
+        return static_cast<int>(getField(parent, row ? goal_line * N + k : k * N + goal_line));
+      };
+      const int added = detail::lineRemovalsAddedTile<N>(get, row, goal_line, at, t);
+      lc_half += goal_line == to_line ? added : -added;
     }
     return packInfo(md, lc_half, mt, p);
   }
@@ -180,15 +183,44 @@ class TilesSpace final : public TilesProblem {
   StateId insertBoard(const Board& b) {
     std::uint64_t w[W] = {};
     for (int i = 0; i < n2_; ++i) setField(w, i, b.tiles[i]);
-    std::size_t slot = hashWords(w) & mask_;
-    for (; slots_[slot] != kEmpty; slot = (slot + 1) & mask_) {
-      if (std::memcmp(words(slots_[slot]), w, sizeof(w)) == 0) return slots_[slot];
-    }
+    const std::uint64_t h = hashWords(w);
+    std::size_t slot;
+    const StateId id = probe(w, h, &slot);
+    if (id != kEmpty) return id;
     const HeuristicTerms t = heuristicTerms(b);
-    return insertAt(slot, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)));
+    return insertAt(slot, h, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)));
   }
 
-  StateId insertAt(std::size_t slot, const std::uint64_t* w, std::uint32_t info) {
+  // Table slots: the low shift_ bits hold the id (ids stay below 0.7 * capacity = 0.7 *
+  // 2^shift_), the high 32 - shift_ bits a tag taken from the top of the hash, so that probes
+  // past other states rarely read the arena. All ones (kEmpty) is never a stored value.
+  void setTableSize(int shift) {
+    if (shift > 31) throw std::length_error("sliding tiles: more than 1.5 billion states");
+    shift_ = shift;
+    mask_ = (std::size_t{1} << shift) - 1;
+    id_mask_ = static_cast<std::uint32_t>(mask_);
+    slots_.assign(std::size_t{1} << shift, kEmpty);
+  }
+  std::uint32_t tagOf(std::uint64_t h) const {
+    return static_cast<std::uint32_t>(h >> (32 + shift_)) << shift_;
+  }
+  // The id of board w (hash h), or kEmpty and the free slot where it belongs.
+  StateId probe(const std::uint64_t* w, std::uint64_t h, std::size_t* slot_out) const {
+    const std::uint32_t tag = tagOf(h);
+    std::size_t slot = h & mask_;
+    for (;; slot = (slot + 1) & mask_) {
+      const std::uint32_t v = slots_[slot];
+      if (v == kEmpty) break;
+      if ((v & ~id_mask_) == tag && std::memcmp(words(v & id_mask_), w, sizeof(std::uint64_t) * W) == 0) {
+        *slot_out = slot;
+        return v & id_mask_;
+      }
+    }
+    *slot_out = slot;
+    return kEmpty;
+  }
+
+  StateId insertAt(std::size_t slot, std::uint64_t h, const std::uint64_t* w, std::uint32_t info) {
     const StateId id = static_cast<StateId>(count_);
     if ((count_ & (kChunkStates - 1)) == 0) {
       Chunk c;
@@ -201,34 +233,33 @@ class TilesSpace final : public TilesProblem {
     std::memcpy(c.words.get() + off * W, w, sizeof(std::uint64_t) * W);
     c.info[off] = info;
     ++count_;
-    slots_[slot] = id;
+    slots_[slot] = tagOf(h) | id;
     if (count_ * 10 > slots_.size() * 7) growTable();
     return id;
   }
 
   void growTable() {
-    std::vector<StateId> bigger(slots_.size() * 2, kEmpty);
-    const std::size_t mask = bigger.size() - 1;
-    for (StateId id : slots_) {
-      if (id == kEmpty) continue;
-      std::size_t slot = hashWords(words(id)) & mask;
-      while (bigger[slot] != kEmpty) slot = (slot + 1) & mask;
-      bigger[slot] = id;
+    setTableSize(shift_ + 1);
+    // Walk the arena in id order (sequential reads) rather than the old table (random reads).
+    for (StateId id = 0; id < count_; ++id) {
+      const std::uint64_t h = hashWords(words(id));
+      std::size_t slot = h & mask_;
+      while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
+      slots_[slot] = tagOf(h) | id;
     }
-    slots_.swap(bigger);
-    mask_ = mask;
   }
 
-  const int n_, n2_;
+  static constexpr int n_ = N, n2_ = N * N;
   StateId start_ = 0, goal_ = 0;
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
-  std::vector<StateId> slots_;
-  std::size_t mask_ = (std::size_t{1} << 12) - 1;
-  std::uint8_t neighbours_[kMaxSize * kMaxSize][4] = {};
-  std::uint8_t num_neighbours_[kMaxSize * kMaxSize] = {};
-  std::uint8_t dist_[kMaxSize * kMaxSize * kMaxSize * kMaxSize] = {};  // dist_[t * n2 + p]
-  std::uint8_t board_[kMaxSize * kMaxSize] = {};  // the state being expanded, unpacked
+  std::vector<std::uint32_t> slots_;
+  std::size_t mask_ = 0;
+  std::uint32_t id_mask_ = 0;
+  int shift_ = 0;
+  std::uint8_t neighbours_[N * N][4] = {};
+  std::uint8_t num_neighbours_[N * N] = {};
+  std::uint8_t dist_[N * N * N * N] = {};  // dist_[t * N * N + p]: Manhattan distance
 };
 
 }  // namespace
@@ -246,13 +277,13 @@ std::unique_ptr<TilesProblem> TilesProblem::create(const Board& start,
     }
   }
   switch (start.size) {
-    case 3:
-    case 4: return std::make_unique<TilesSpace<1, 4>>(start, std::move(weights));
-    case 5: return std::make_unique<TilesSpace<2, 5>>(start, std::move(weights));
-    case 6: return std::make_unique<TilesSpace<4, 6>>(start, std::move(weights));
-    case 7: return std::make_unique<TilesSpace<5, 6>>(start, std::move(weights));
-    case 8: return std::make_unique<TilesSpace<6, 6>>(start, std::move(weights));
-    default: return std::make_unique<TilesSpace<9, 7>>(start, std::move(weights));
+    case 3: return std::make_unique<TilesSpace<3>>(start, std::move(weights));
+    case 4: return std::make_unique<TilesSpace<4>>(start, std::move(weights));
+    case 5: return std::make_unique<TilesSpace<5>>(start, std::move(weights));
+    case 6: return std::make_unique<TilesSpace<6>>(start, std::move(weights));
+    case 7: return std::make_unique<TilesSpace<7>>(start, std::move(weights));
+    case 8: return std::make_unique<TilesSpace<8>>(start, std::move(weights));
+    default: return std::make_unique<TilesSpace<9>>(start, std::move(weights));
   }
 }
 

@@ -69,13 +69,14 @@ TEST(MprimTest, NonUniformFormat) {
        "totalnumberofprimitives: 2\n"
        "primID: 0\nstartangle_c: 0\nendpose_c: 2 0 0\nadditionalactioncostmult: 1\nturning_radius: 0.0\nintermediateposes: 3\n"
        "0 0 0\n0.1 0 0\n0.2 0 0\n"
-       "primID: 0\nstartangle_c: 1\nendpose_c: 0 0 0\nadditionalactioncostmult: 1\nturning_radius: 0.0\nintermediateposes: 2\n"
+       "primID: 0\nstartangle_c: 1\nendpose_c: 0 0 0\nadditionalactioncostmult: 1\nturning_radius: -0.7\nintermediateposes: 2\n"
        "0 0 3.14159265\n0 0 0.1\n";
   std::istringstream in(f.str());
   const PrimitiveSet s = readMprim(in, "nu.mprim", 0.1);
   EXPECT_FALSE(s.uniform);
   EXPECT_DOUBLE_EQ(s.min_turning_radius, 0.5);
   EXPECT_EQ(s.primitives[1].end_heading, 0);
+  EXPECT_DOUBLE_EQ(s.primitives[1].turning_radius, -0.7);  // SBPL signs it
   EXPECT_EQ(s.headingIndex(0.2), 0);
   EXPECT_EQ(s.headingIndex(2.0), 1);
   EXPECT_EQ(s.headingIndex(-0.3), 0);
@@ -137,8 +138,11 @@ void checkGeneratedSet(const PrimitiveSet& s, const PrimitiveGeneratorOptions& o
       EXPECT_NEAR(angleDistance(p.poses.back().theta, s.heading_angles[p.end_heading]), 0.0, 1e-12);
       const int dh = std::abs(p.end_heading - h);
       EXPECT_TRUE(dh == 0 || dh == 1 || dh == s.num_headings - 1);
-      if (p.turning_radius > 0.0) {
-        EXPECT_GE(p.turning_radius, o.turning_radius - 1e-9);
+      if (p.turning_radius != 0.0) {
+        EXPECT_GE(std::fabs(p.turning_radius), o.turning_radius - 1e-9);
+        // Signed as SBPL does: positive when the heading turns counter-clockwise.
+        const double turn = std::remainder(s.heading_angles[p.end_heading] - s.heading_angles[h], 2 * M_PI);
+        EXPECT_GT(turn * p.turning_radius, 0.0);
         // Consecutive poses continue smoothly: the interpolated path never jumps.
         for (std::size_t k = 1; k < p.poses.size(); ++k) {
           EXPECT_LE(std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y), 0.5 * o.resolution + 1e-9);
@@ -148,6 +152,8 @@ void checkGeneratedSet(const PrimitiveSet& s, const PrimitiveGeneratorOptions& o
           const double d = std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
           EXPECT_LE(angleDistance(p.poses[k].theta, p.poses[k - 1].theta), 1.01 * d / o.turning_radius + 1e-9);
         }
+      } else {
+        EXPECT_TRUE(p.end_heading == h || (p.end_dx == 0 && p.end_dy == 0));  // straight or a turn in place
       }
     }
   }
@@ -200,6 +206,9 @@ TEST(MprimGeneratorTest, WrittenSetsReadBack) {
       EXPECT_EQ(a.end_dy, b.end_dy);
       EXPECT_EQ(a.end_heading, b.end_heading);
       EXPECT_DOUBLE_EQ(a.cost_multiplier, b.cost_multiplier);
+      if (!s.uniform) {  // only non-uniform files carry the turning radius
+        EXPECT_NEAR(a.turning_radius, b.turning_radius, 1e-6);
+      }
       ASSERT_EQ(a.poses.size(), b.poses.size());
       for (std::size_t k = 0; k < a.poses.size(); ++k) {
         EXPECT_NEAR(a.poses[k].x, b.poses[k].x, 1e-6);

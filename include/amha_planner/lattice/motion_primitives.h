@@ -18,7 +18,8 @@ struct MotionPrimitive {
   int end_dx = 0, end_dy = 0;  ///< end cell relative to the start cell
   int end_heading = 0;       ///< 0 .. num_headings - 1
   double cost_multiplier = 1.0;  ///< additionalactioncostmult (> 0)
-  double turning_radius = 0.0;   ///< non-uniform files only (0: straight or turn in place)
+  double turning_radius = 0.0;   ///< non-uniform files only (0: straight or turn in place;
+                                 ///< SBPL's files sign it: negative turns right)
   std::vector<Pose2D> poses;     ///< intermediate poses, first at (0, 0)
 };
 

@@ -47,7 +47,10 @@ inline std::uint32_t anchorValue(const HeuristicTerms& t) {
 }
 
 /// An inadmissible value, rounded to the nearest integer (the search stores integers).
-std::uint32_t weightedValue(const HeuristicTerms& t, const TermWeights& w);
+/// Inline and without std::lround: it runs for every heuristic of every new state.
+inline std::uint32_t weightedValue(const HeuristicTerms& t, const TermWeights& w) {
+  return static_cast<std::uint32_t>(w.md * t.md + w.lc * t.lc + w.mt * t.mt + 0.5);
+}
 
 }  // namespace tiles
 }  // namespace amha
