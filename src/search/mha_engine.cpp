@@ -10,22 +10,20 @@ namespace amha {
 namespace detail {
 
 std::size_t MhaEngine::engineBytes() const {
-  std::size_t bytes = rec_.capacity() * sizeof(std::uint32_t) + incons_.capacity() * sizeof(StateId);
+  std::size_t bytes = rec_.capacity() * sizeof(std::uint32_t) +
+                      (incons_.capacity() + members_.capacity()) * sizeof(StateId);
   for (const auto& q : open_) bytes += q.memoryBytes();
   return bytes;
 }
 
 void MhaEngine::growArrays(std::size_t cap) {
-  // Append fresh records (g = infinity, no parent, no flags, not in any heap).
+  // Append fresh records (g = infinity, no parent, no flags, in no queue).
   rec_.reserve(cap * stride_);
   while (rec_.size() < cap * stride_) rec_.insert(rec_.end(), fresh_.begin(), fresh_.end());
-  for (std::size_t i = 0; i < nh_; ++i) {
-    open_[i].bindPositions(rec_.data() + kHeaderWords + nh_ + i, stride_, cap);
-  }
 }
 
 void MhaEngine::resetArrays(std::size_t used) {
-  for (auto& q : open_) q.clear();  // before the records: clear() writes positions
+  for (auto& q : open_) q.clear();
   for (std::size_t s = 0; s < used; ++s) {
     std::copy(fresh_.begin(), fresh_.end(), rec_.begin() + static_cast<std::ptrdiff_t>(s * stride_));
   }
@@ -38,14 +36,14 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   if (nh != nh_ || open_.size() != nh) {
     // A different heuristic count changes the record layout: start from empty records.
     nh_ = nh;
-    stride_ = kHeaderWords + 2 * nh_;
-    open_.assign(nh_, IndexedHeap<MhaKey>());
+    member_words_ = (nh_ + 31) / 32;
+    stride_ = kHeaderWords + nh_ + member_words_;
+    stride_ += stride_ % 2;
+    open_.assign(nh_, LazyQueue());
     fresh_.assign(stride_, 0);
     const Cost inf = kInfiniteCost;
     std::memcpy(fresh_.data(), &inf, sizeof inf);
     fresh_[2] = kNoState;
-    std::fill(fresh_.begin() + static_cast<std::ptrdiff_t>(kHeaderWords + nh_), fresh_.end(),
-              IndexedHeap<MhaKey>::kAbsent);
     rec_.clear();
     capacity_ = 0;
     used_ = 0;
@@ -67,10 +65,10 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   generate(goal);
   setG(start, 0);
   if (h(start, 0) != kInfiniteHeuristic) {
-    const MhaKey k0 = key(start, 0);
-    open_[0].push(start, k0);
+    const QueueEntry k0 = key(start, 0);
+    pushOpen(0, k0);
     for (std::size_t i = 1; i < nh_; ++i) {
-      if (admits(start, i, k0.f)) open_[i].push(start, key(start, i));
+      if (admits(start, i, k0.f)) pushOpen(i, key(start, i));
     }
   }
 
@@ -97,10 +95,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
       status = certified_optimal ? SearchStatus::kProvenOptimal : SearchStatus::kBoundReached;
       break;
     }
-    w1_ = std::max(w1_ - opt_.dw1, 1.0);
-    w2_ = std::max(w2_ - opt_.dw2, 1.0);
     ++iteration_;
-    prepareNextIteration();
+    prepareNextIteration(std::max(w1_ - opt_.dw1, 1.0), std::max(w2_ - opt_.dw2, 1.0));
     if (slowLimitCheck()) {
       status = stop_;
       break;
@@ -122,8 +118,8 @@ bool MhaEngine::improvePath() {
   const StateId goal = problem_->goal();
   const std::size_t n_inad = nh_ - 1;
   for (;;) {
-    if (open_[0].empty()) return true;
-    const double min0 = open_[0].top().key.f;
+    if (!cleanTop(0)) return true;
+    const double min0 = open_[0].top().f;
     // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min().
     if (static_cast<double>(g(goal)) <= w2_ * min0) return true;
     if (limitHit()) return false;
@@ -131,16 +127,17 @@ bool MhaEngine::improvePath() {
     if (n_inad > 0) {
       const std::size_t i = 1 + round_robin_;
       round_robin_ = (round_robin_ + 1) % n_inad;
-      if (!open_[i].empty() && open_[i].top().key.f <= w2_ * min0) q = i;
+      if (cleanTop(i) && open_[i].top().f <= w2_ * min0) q = i;
     }
     const StateId s = open_[q].top().id;
+    open_[q].pop();
     expand(s, q);
     flags(s) |= (q == 0) ? kClosedAnch : kClosedInad;
   }
 }
 
 void MhaEngine::expand(StateId s, std::size_t queue) {
-  for (auto& q : open_) q.remove(s);
+  clearAllOpen(s);  // out of every queue: its entries elsewhere are now stale
   ++expansions_;
   if (observer_) observer_(s, queue, iteration_);
   problem_->successors(s, succ_);
@@ -168,28 +165,42 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
       continue;
     }
     if (h(t, 0) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
-    const MhaKey k0 = key(t, 0);
-    open_[0].push(t, k0);
+    // The new g changes every key, so t's old entries are stale; push fresh ones.
+    const QueueEntry k0 = key(t, 0);
+    pushOpen(0, k0);
     if (f & kClosedInad) continue;
     for (std::size_t i = 1; i < nh_; ++i) {
       if (admits(t, i, k0.f)) {
-        open_[i].push(t, key(t, i));
+        pushOpen(i, key(t, i));
       } else {
         // A lower g can make the test fail; keep OPEN_i exactly the states that pass it.
-        open_[i].remove(t);
+        clearInOpen(t, i);
       }
     }
   }
 }
 
-void MhaEngine::prepareNextIteration() {
-  // Lines 38-40: move INCONS into OPEN_0, then re-key OPEN_0 with the new w1.
+void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
+  // Lines 38-40: OPEN_0 := OPEN_0 u INCONS, re-keyed with the new w1. Members are found with
+  // the old weights (an entry is a member iff its key is the current one), then re-keyed.
+  members_.clear();
+  for (const QueueEntry& e : open_[0]) {
+    if (isMember(0, e)) members_.push_back(e.id);
+  }
   for (StateId s : incons_) {
     flags(s) &= ~static_cast<std::uint32_t>(kIncons);
-    if (h(s, 0) != kInfiniteHeuristic) open_[0].appendUnordered(s, MhaKey{0.0, 0});
+    if (h(s, 0) != kInfiniteHeuristic) members_.push_back(s);  // closed: in no queue
   }
   incons_.clear();
-  open_[0].rekey([this](StateId s) { return key(s, 0); });
+  w1_ = next_w1;
+  w2_ = next_w2;
+  for (StateId s : members_) clearAllOpen(s);
+  open_[0].clear();
+  for (StateId s : members_) {
+    open_[0].appendUnordered(key(s, 0));
+    setInOpen(s, 0);
+  }
+  open_[0].heapify();
   // "Copy all states from OPEN_0 to OPEN_i": we re-apply Expand's admission test
   // (key_i <= w2 * key_0, h_i finite). The paper leaves this open. The bound proof only needs
   // line 19's test, so either choice is correct; filtering keeps OPEN_i identical to what
@@ -197,10 +208,13 @@ void MhaEngine::prepareNextIteration() {
   // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
   for (std::size_t i = 1; i < nh_; ++i) {
     open_[i].clear();
-    for (const auto& e : open_[0].entries()) {
-      if (admits(e.id, i, e.key.f)) open_[i].appendUnordered(e.id, key(e.id, i));
+    for (StateId s : members_) {
+      if (admits(s, i, key(s, 0).f)) {
+        open_[i].appendUnordered(key(s, i));
+        setInOpen(s, i);
+      }
     }
-    open_[i].rebuild();
+    open_[i].heapify();
   }
   clearClosed();
 }
@@ -222,7 +236,9 @@ Cost MhaEngine::lowerBound() const {
     const HeuristicValue h0 = h(s, 0);
     if (h0 != kInfiniteHeuristic) lb = std::min(lb, g(s) + static_cast<Cost>(h0));
   };
-  for (const auto& e : open_[0].entries()) consider(e.id);
+  for (const QueueEntry& e : open_[0]) {
+    if (isMember(0, e)) consider(e.id);
+  }
   for (StateId s : incons_) consider(s);
   return lb;
 }
@@ -230,16 +246,25 @@ Cost MhaEngine::lowerBound() const {
 void MhaEngine::checkInvariants() const {
   auto fail = [](const std::string& what) { throw std::logic_error("A-MHA* invariant: " + what); };
   for (std::size_t i = 0; i < nh_; ++i) {
-    for (const auto& e : open_[i].entries()) {
+    std::size_t members = 0;
+    for (const QueueEntry& e : open_[i]) {
+      if (!isMember(i, e)) continue;  // stale
+      ++members;
       const StateId s = e.id;
       if (flags(s) & kClosedAnch) fail("closed state in an OPEN queue");
-      if (std::abs(e.key.f - key(s, i).f) > 1e-9 * std::max(1.0, e.key.f)) {
-        fail("stale key in OPEN_" + std::to_string(i));
-      }
+      if (e.h != h(s, i)) fail("entry of OPEN_" + std::to_string(i) + " has a wrong h");
       if (i > 0) {
-        if (!open_[0].contains(s)) fail("OPEN_i is not a subset of OPEN_0");
+        if (flags(s) & kClosedInad) fail("CLOSED_inad state in OPEN_" + std::to_string(i));
+        if (!inOpen(s, 0)) fail("OPEN_i is not a subset of OPEN_0");
         if (!admits(s, i, key(s, 0).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
       }
+    }
+    // Every state marked as a member has exactly one entry with its current key.
+    std::size_t marked = 0;
+    for (std::size_t s = 0; s < used_; ++s) marked += inOpen(static_cast<StateId>(s), i);
+    if (marked != members) {
+      fail("OPEN_" + std::to_string(i) + ": " + std::to_string(marked) + " states marked, " +
+           std::to_string(members) + " member entries");
     }
   }
   for (StateId s : incons_) {

@@ -8,7 +8,8 @@
 #include <functional>
 #include <vector>
 
-#include "amha_planner/search/indexed_heap.h"
+#include "amha_planner/search/big_array_allocator.h"
+#include "lazy_queue.h"
 #include "search_base.h"
 
 namespace amha {
@@ -21,14 +22,6 @@ struct MhaEngineOptions {
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
   bool check_invariants = false;
-};
-
-/// Queue key: g + w1*h, ties broken towards the smaller h (deeper states), which matters in
-/// domains with many equal f-values such as the sliding tiles.
-struct MhaKey {
-  double f;
-  HeuristicValue h;
-  bool operator<(const MhaKey& o) const { return f < o.f || (f == o.f && h < o.h); }
 };
 
 /// Hook for tests: called for every expansion with the state, the queue (0 = anchor) and the
@@ -48,15 +41,18 @@ class MhaEngine : public SearchBase {
   bool improvePath();  // false if a limit stopped it
   void expand(StateId s, std::size_t queue);
   void generate(StateId s);  // computes and caches the heuristics of a new state
-  void prepareNextIteration();
+  void prepareNextIteration(double next_w1, double next_w2);
   void clearClosed();
   Cost lowerBound() const;  // min over OPEN_0 and INCONS of g + h0
   void checkInvariants() const;
 
   // Per-state data lives in one record per state (array of structs), so that touching a state
   // costs one or two cache misses instead of one per array. Record layout in 32-bit words:
-  //   [0..1] g (int64)  [2] parent  [3] flags  [4 .. 4+nh) h_i  [4+nh .. 4+2nh) heap position i
-  // The stride 4 + 2nh is even, so g stays 8-byte aligned.
+  //   [0..1] g (int64)  [2] parent  [3] flags  [4 .. 4+nh) h_i
+  //   [4+nh .. 4+nh+mw) membership bits: bit i set <=> the state is in OPEN_i
+  // padded to an even stride so that g stays 8-byte aligned. The queues hold entries lazily
+  // (see lazy_queue.h): an entry describes a member iff its state's bit is set and its key is
+  // the state's current key; anything else is stale and skipped.
   static constexpr std::size_t kHeaderWords = 4;
   std::uint32_t* rec(StateId s) { return rec_.data() + static_cast<std::size_t>(s) * stride_; }
   const std::uint32_t* rec(StateId s) const {
@@ -71,13 +67,44 @@ class MhaEngine : public SearchBase {
   std::uint32_t& flags(StateId s) { return rec(s)[3]; }
   std::uint32_t flags(StateId s) const { return rec(s)[3]; }
   HeuristicValue h(StateId s, std::size_t i) const { return rec(s)[kHeaderWords + i]; }
-  MhaKey key(StateId s, std::size_t i) const {
+  QueueEntry key(StateId s, std::size_t i) const {
     const HeuristicValue hv = h(s, i);
-    return MhaKey{static_cast<double>(g(s)) + w1_ * static_cast<double>(hv), hv};
+    return QueueEntry{static_cast<double>(g(s)) + w1_ * static_cast<double>(hv), hv, s};
   }
   // Expand's admission test for OPEN_i (i >= 1): finite h_i and key_i <= w2 * key_0.
   bool admits(StateId s, std::size_t i, double key0) const {
     return h(s, i) != kInfiniteHeuristic && key(s, i).f <= w2_ * key0;
+  }
+
+  // Queue membership.
+  bool inOpen(StateId s, std::size_t i) const {
+    return (rec(s)[kHeaderWords + nh_ + i / 32] >> (i % 32)) & 1u;
+  }
+  void setInOpen(StateId s, std::size_t i) { rec(s)[kHeaderWords + nh_ + i / 32] |= 1u << (i % 32); }
+  void clearInOpen(StateId s, std::size_t i) {
+    rec(s)[kHeaderWords + nh_ + i / 32] &= ~(1u << (i % 32));
+  }
+  void clearAllOpen(StateId s) {
+    std::uint32_t* m = rec(s) + kHeaderWords + nh_;
+    for (std::size_t w = 0; w < member_words_; ++w) m[w] = 0;
+  }
+  bool isMember(std::size_t i, const QueueEntry& e) const {
+    return inOpen(e.id, i) && key(e.id, i).f == e.f;
+  }
+  /// Drops stale entries from the top of OPEN_i; false if no member is left.
+  bool cleanTop(std::size_t i) {
+    LazyQueue& q = open_[i];
+    while (!q.empty()) {
+      const QueueEntry& t = q.top();
+      __builtin_prefetch(rec(t.id));
+      if (isMember(i, t)) return true;
+      q.pop();
+    }
+    return false;
+  }
+  void pushOpen(std::size_t i, const QueueEntry& e) {
+    open_[i].push(e);
+    setInOpen(e.id, i);
   }
 
   Cost gOf(StateId s) const override { return g(s); }
@@ -87,16 +114,18 @@ class MhaEngine : public SearchBase {
   void resetArrays(std::size_t used) override;
 
   MhaEngineOptions opt_;
-  std::size_t nh_ = 1;  // heuristics in use, anchor included
+  std::size_t nh_ = 1;            // heuristics in use, anchor included
+  std::size_t member_words_ = 1;  // words of membership bits per record
   std::size_t stride_ = kHeaderWords + 2;
   double w1_ = 1.0, w2_ = 1.0;
   int iteration_ = 0;
   std::size_t round_robin_ = 0;
 
-  std::vector<std::uint32_t> rec_;       // the records
-  std::vector<std::uint32_t> fresh_;     // one record as a new state has it
+  std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> rec_;  // the records
+  std::vector<std::uint32_t> fresh_;  // one record as a new state has it
   std::vector<StateId> incons_;
-  std::vector<IndexedHeap<MhaKey>> open_;  // open_[0] is the anchor queue
+  std::vector<StateId> members_;      // scratch for prepareNextIteration
+  std::vector<LazyQueue> open_;       // open_[0] is the anchor queue
   std::vector<HeuristicValue> hbuf_;
   ExpansionObserver observer_;
 };
