@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "amha_planner/search/big_array_allocator.h"
 #include "line_conflict.h"
 
 namespace amha {
@@ -41,6 +42,17 @@ class TilesSpace final : public TilesProblem {
       if (c > 0) neighbours_[p][k++] = static_cast<std::uint8_t>(p - 1);
       if (c < n_ - 1) neighbours_[p][k++] = static_cast<std::uint8_t>(p + 1);
       num_neighbours_[p] = static_cast<std::uint8_t>(k);
+    }
+    for (int p = 0; p < n2_; ++p) {
+      for (int k = 0; k < num_neighbours_[p]; ++k) {
+        const int q = neighbours_[p][k];
+        for (int j = 0; j < num_neighbours_[q]; ++j) {
+          if (neighbours_[q][j] == p) back_[p][k] = static_cast<std::uint8_t>(j);
+        }
+      }
+    }
+    for (int p = 0; p < n2_; ++p) {
+      const int r = p / n_, c = p % n_;
       for (int t = 0; t < n2_; ++t) {
         dist_[t * n2_ + p] = static_cast<std::uint8_t>(std::abs(r - t / n_) + std::abs(c - t % n_));
       }
@@ -57,21 +69,57 @@ class TilesSpace final : public TilesProblem {
 
   void successors(StateId s, std::vector<Edge>& out) override {
     out.clear();
-    std::uint64_t parent[W], child[W];
+    std::uint64_t parent[W];
     std::memcpy(parent, words(s), sizeof(parent));
     const std::uint32_t info = infoOf(s);
     const int b = infoBlank(info);
-    for (int k = 0; k < num_neighbours_[b]; ++k) {
+    const int n = num_neighbours_[b];
+    // The child that undoes the move which created s is the state s was created from: its id
+    // is stored with s, which saves a table lookup and a read of its board for about a third
+    // of all children (the two most likely cache misses of an expansion).
+    const std::uint32_t from = fromOf(s);
+    const int from_k = from == kNoFrom ? -1 : static_cast<int>(from >> kFromIdBits);
+    // Three passes over the other children so that their cache misses overlap: make the
+    // boards and prefetch their table slots; prefetch the stored board a slot's tag points
+    // to; then look up and insert as usual (the prefetches are only hints).
+    std::uint64_t child[4][W];
+    std::uint64_t hash[4];
+    int tile[4];
+    for (int k = 0; k < n; ++k) {
+      if (k == from_k) continue;
       const int p = neighbours_[b][k];
-      const int t = static_cast<int>(getField(parent, p));
+      tile[k] = static_cast<int>(getField(parent, p));
       // Field b holds 0 and field p holds t: XOR-ing t into both moves the tile.
-      std::memcpy(child, parent, sizeof(child));
-      xorField(child, b, static_cast<std::uint64_t>(t));
-      xorField(child, p, static_cast<std::uint64_t>(t));
-      const std::uint64_t h = hashWords(child);
+      std::memcpy(child[k], parent, sizeof(parent));
+      xorField(child[k], b, static_cast<std::uint64_t>(tile[k]));
+      xorField(child[k], p, static_cast<std::uint64_t>(tile[k]));
+      hash[k] = hashWords(child[k]);
+      __builtin_prefetch(&slots_[hash[k] & mask_]);
+    }
+    for (int k = 0; k < n; ++k) {
+      if (k == from_k) continue;
+      const std::uint32_t tag = tagOf(hash[k]);
+      for (std::size_t slot = hash[k] & mask_;; slot = (slot + 1) & mask_) {
+        const std::uint32_t v = slots_[slot];
+        if (v == kEmpty) break;
+        if ((v & ~id_mask_) == tag) {
+          __builtin_prefetch(words(v & id_mask_));
+          break;
+        }
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      if (k == from_k) {
+        out.push_back(Edge{from & kFromIdMask, 1});
+        continue;
+      }
       std::size_t slot;
-      StateId id = probe(child, h, &slot);
-      if (id == kEmpty) id = insertAt(slot, h, child, childInfo(parent, info, b, p, t));
+      StateId id = probe(child[k], hash[k], &slot);
+      if (id == kEmpty) {
+        const int p = neighbours_[b][k];
+        id = insertAt(slot, hash[k], child[k], childInfo(parent, info, b, p, tile[k]),
+                      linkFrom(s, b, k));
+      }
       out.push_back(Edge{id, 1});
     }
   }
@@ -96,27 +144,44 @@ class TilesSpace final : public TilesProblem {
   }
 
   std::size_t arenaBytes() const override {
-    return chunks_.size() * kChunkStates * (sizeof(std::uint64_t) * W + sizeof(std::uint32_t)) +
+    return chunks_.size() * kChunkStates * (sizeof(std::uint64_t) * W + 2 * sizeof(std::uint32_t)) +
            chunks_.capacity() * sizeof(Chunk);
   }
   std::size_t tableBytes() const override { return slots_.capacity() * sizeof(StateId); }
 
  private:
   static constexpr StateId kEmpty = 0xFFFFFFFFu;
-  static constexpr int kChunkBits = 16;
+  static constexpr int kChunkBits = 18;
   static constexpr std::size_t kChunkStates = std::size_t{1} << kChunkBits;
   static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << B) - 1;
 
+  // Chunks of 2^18 boards (2 MB and more: huge pages, see BigArrayAllocator) never move, so
+  // growing the arena copies nothing.
   struct Chunk {
-    std::unique_ptr<std::uint64_t[]> words;
-    std::unique_ptr<std::uint32_t[]> info;
+    std::vector<std::uint64_t, BigArrayAllocator<std::uint64_t>> words;
+    std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> info;
+    std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> from;  // see fromOf()
   };
 
   const std::uint64_t* words(StateId s) const {
-    return chunks_[s >> kChunkBits].words.get() + (s & (kChunkStates - 1)) * W;
+    return chunks_[s >> kChunkBits].words.data() + (s & (kChunkStates - 1)) * W;
   }
   std::uint32_t infoOf(StateId s) const {
     return chunks_[s >> kChunkBits].info[s & (kChunkStates - 1)];
+  }
+  // The state a board was first created from: its id (low 30 bits) and, in the top 2 bits,
+  // which of the board's blank moves leads back to it; kNoFrom for the start and goal (and
+  // for ids too large to fit, which then take the ordinary lookup).
+  static constexpr std::uint32_t kNoFrom = 0xFFFFFFFFu;
+  static constexpr int kFromIdBits = 30;
+  static constexpr std::uint32_t kFromIdMask = (1u << kFromIdBits) - 1;
+  std::uint32_t fromOf(StateId s) const {
+    return chunks_[s >> kChunkBits].from[s & (kChunkStates - 1)];
+  }
+  // Link for the child of s (blank at b) made by moving the tile at b's k-th neighbour.
+  std::uint32_t linkFrom(StateId s, int b, int k) const {
+    if (s >= kFromIdMask) return kNoFrom;
+    return s | static_cast<std::uint32_t>(back_[b][k]) << kFromIdBits;
   }
 
   static std::uint32_t getField(const std::uint64_t* w, int i) {
@@ -188,7 +253,7 @@ class TilesSpace final : public TilesProblem {
     const StateId id = probe(w, h, &slot);
     if (id != kEmpty) return id;
     const HeuristicTerms t = heuristicTerms(b);
-    return insertAt(slot, h, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)));
+    return insertAt(slot, h, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)), kNoFrom);
   }
 
   // Table slots: the low shift_ bits hold the id (ids stay below 0.7 * capacity = 0.7 *
@@ -220,18 +285,21 @@ class TilesSpace final : public TilesProblem {
     return kEmpty;
   }
 
-  StateId insertAt(std::size_t slot, std::uint64_t h, const std::uint64_t* w, std::uint32_t info) {
+  StateId insertAt(std::size_t slot, std::uint64_t h, const std::uint64_t* w, std::uint32_t info,
+                   std::uint32_t from) {
     const StateId id = static_cast<StateId>(count_);
     if ((count_ & (kChunkStates - 1)) == 0) {
       Chunk c;
-      c.words.reset(new std::uint64_t[kChunkStates * W]);
-      c.info.reset(new std::uint32_t[kChunkStates]);
+      c.words.resize(kChunkStates * W);
+      c.info.resize(kChunkStates);
+      c.from.resize(kChunkStates);
       chunks_.push_back(std::move(c));
     }
     Chunk& c = chunks_.back();
     const std::size_t off = count_ & (kChunkStates - 1);
-    std::memcpy(c.words.get() + off * W, w, sizeof(std::uint64_t) * W);
+    std::memcpy(c.words.data() + off * W, w, sizeof(std::uint64_t) * W);
     c.info[off] = info;
+    c.from[off] = from;
     ++count_;
     slots_[slot] = tagOf(h) | id;
     if (count_ * 10 > slots_.size() * 7) growTable();
@@ -253,12 +321,13 @@ class TilesSpace final : public TilesProblem {
   StateId start_ = 0, goal_ = 0;
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
-  std::vector<std::uint32_t> slots_;
+  std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> slots_;
   std::size_t mask_ = 0;
   std::uint32_t id_mask_ = 0;
   int shift_ = 0;
   std::uint8_t neighbours_[N * N][4] = {};
   std::uint8_t num_neighbours_[N * N] = {};
+  std::uint8_t back_[N * N][4] = {};  // back_[b][k]: index of b among neighbours_[neighbours_[b][k]]
   std::uint8_t dist_[N * N * N * N] = {};  // dist_[t * N * N + p]: Manhattan distance
 };
 
