@@ -100,6 +100,10 @@ class LazyQueue {
     for (;;) {
       const std::size_t c = 4 * i + 1;
       if (c >= n) break;
+      // The walk down is a chain of dependent cache misses; fetch the next level (the four
+      // children's groups, one line each) while this one is compared.
+      const std::size_t g = 4 * c + 1;
+      for (std::size_t k = 0; k < 4 && g + 4 * k < n; ++k) __builtin_prefetch(a + g + 4 * k);
       std::size_t best = c;
       const std::size_t last = c + 4 < n ? c + 4 : n;
       for (std::size_t k = c + 1; k < last; ++k) {

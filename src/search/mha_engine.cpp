@@ -130,6 +130,7 @@ bool MhaEngine::improvePath() {
       if (cleanTop(i) && open_[i].top().f <= w2_ * min0) q = i;
     }
     const StateId s = open_[q].top().id;
+    problem_->prefetch(s);  // overlaps with the pop's walk down the heap
     open_[q].pop();
     expand(s, q);
     flags(s) |= (q == 0) ? kClosedAnch : kClosedInad;

@@ -124,6 +124,15 @@ class TilesSpace final : public TilesProblem {
     }
   }
 
+  void prefetch(StateId s) const override {
+    const std::uint64_t* w = words(s);
+    __builtin_prefetch(w);
+    if (W > 4) __builtin_prefetch(w + W - 1);  // a board can straddle two lines
+    const Chunk& c = chunks_[s >> kChunkBits];
+    __builtin_prefetch(&c.info[s & (kChunkStates - 1)]);
+    __builtin_prefetch(&c.from[s & (kChunkStates - 1)]);
+  }
+
   void heuristics(StateId s, HeuristicValue* h, std::size_t count) override {
     const HeuristicTerms t = terms(s);
     if (count > 0) h[0] = anchorValue(t);
@@ -155,8 +164,7 @@ class TilesSpace final : public TilesProblem {
   static constexpr std::size_t kChunkStates = std::size_t{1} << kChunkBits;
   static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << B) - 1;
 
-  // Chunks of 2^18 boards (2 MB and more: huge pages, see BigArrayAllocator) never move, so
-  // growing the arena copies nothing.
+  // Chunks of 2^18 boards never move, so growing the arena copies nothing.
   struct Chunk {
     std::vector<std::uint64_t, BigArrayAllocator<std::uint64_t>> words;
     std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> info;
