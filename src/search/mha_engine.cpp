@@ -18,8 +18,11 @@ std::size_t MhaEngine::engineBytes() const {
 
 void MhaEngine::growArrays(std::size_t cap) {
   // Append fresh records (g = infinity, no parent, no flags, in no queue).
-  rec_.reserve(cap * stride_);
-  while (rec_.size() < cap * stride_) rec_.insert(rec_.end(), fresh_.begin(), fresh_.end());
+  const std::size_t old_size = rec_.size();
+  rec_.resize(cap * stride_);
+  for (std::size_t w = old_size; w < rec_.size(); w += stride_) {
+    std::memcpy(rec_.data() + w, fresh_.data(), stride_ * sizeof(std::uint32_t));
+  }
 }
 
 void MhaEngine::resetArrays(std::size_t used) {
