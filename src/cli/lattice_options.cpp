@@ -29,9 +29,12 @@ void LatticeOptions::addTo(CLI::App& app) {
   app.add_option("--turn-time-45", turn_time_45, "seconds to turn 45 degrees in place (default 0.6; .cfg: the file's)");
   app.add_option("--inadmissible", inadmissible, "number of inadmissible heuristics 0..3 (default 3)");
   app.add_option("--anchor", anchor,
-                 "admissible anchor heuristic: euclidean (the paper's) | grid (+ a 16-connected grid "
+                 "admissible anchor heuristic: euclidean (the paper's) | grid (+ an 8-connected grid "
                  "relaxation) | coarse (+ a block abstraction of the lattice; default)");
   app.add_option("--coarse-block", coarse_block, "cells per block side of the coarse anchor (default 0 = automatic)");
+  app.add_flag("--no-turn-term", no_turn_term,
+               "anchor without its turning term (cost of turning to the goal's heading): fewer expansions "
+               "on large maps where turns are cheap, more where they are expensive");
   app.add_flag("--backward", backward, "search from the goal back to the start (as SBPL does by default)");
 }
 
@@ -102,6 +105,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   c.grid_anchor = o.anchor != "euclidean";
   c.coarse_anchor = o.anchor == "coarse";
   c.coarse_block = o.coarse_block;
+  c.anchor_turn_term = !o.no_turn_term;
   c.backward_search = o.backward;
   return out;
 }

@@ -28,8 +28,9 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   goal_x_ = goal.x;
   goal_y_ = goal.y;
   const std::vector<double>& angles = graph.primitives().heading_angles;
+  const bool turn_term = graph.config().anchor_turn_term;
   for (int h = 0; h < headings_; ++h) {
-    const double d = angleDistance(angles[h], angles[goal.heading]);
+    const double d = turn_term ? angleDistance(angles[h], angles[goal.heading]) : 0.0;
     turn_euclid_.push_back(graph.euclidTurnUnitsPerRadian() * d);
     turn_grid_.push_back(graph.gridTurnUnitsPerRadian() * d * kGridFraction);
   }

@@ -154,6 +154,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
   l.coarse_anchor = getBool(pnh, "coarse_anchor", l.coarse_anchor);
   l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, 1024);
+  l.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.anchor_turn_term);
   l.backward_search = getBool(pnh, "backward_search", l.backward_search);
   l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
   // Map.

@@ -177,6 +177,49 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
   checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);
 }
 
+// Without its turning term the anchor stays consistent (forward and backward), no longer
+// depends on the heading at a cell, and never exceeds the anchor with the term.
+TEST(AnchorTest, WithoutTurnTermConsistentAndHeadingFree) {
+  for (bool coarse : {false, true}) {
+    auto map = test::randomMap(120, 90, 0.05, 11, 30, 180);
+    LatticeConfig c;
+    c.turning_radius = 0.3;
+    c.footprint = test::rectangle(0.12, 0.08);
+    c.cost_penalty = 252.0;
+    c.time_to_turn_45 = 3.0;
+    c.coarse_anchor = coarse;
+    map->cost[45 * 120 + 60] = 0;
+    LatticeFixture with = makeFixture(map, c);
+    c.anchor_turn_term = false;
+    LatticeFixture without = makeFixture(map, c);
+    const LatticeState goal{60, 45, 3};
+    checkConsistencyOnRandomEdges(without, goal, 4000, 11);
+    checkConsistencyOnRandomEdges(without, goal, 4000, 12, true);
+    auto hw = with.builder->compute(goal.x, goal.y, goal.heading);
+    auto ho = without.builder->compute(goal.x, goal.y, goal.heading);
+    LatticeProblem pw(*with.graph, hw, goal, goal, 3), po(*without.graph, ho, goal, goal, 3);
+    int differs = 0;
+    for (int y = 0; y < map->height; y += 3) {
+      for (int x = 0; x < map->width; x += 3) {
+        for (int h = 0; h < with.graph->numHeadings(); ++h) {
+          const HeuristicValue a = pw.anchor(x, y, h), b = po.anchor(x, y, h);
+          if (a == kInfiniteHeuristic) {
+            EXPECT_EQ(b, kInfiniteHeuristic);
+            continue;
+          }
+          ASSERT_LE(b, a) << x << "," << y << "," << h;
+          differs += b < a;
+          // Without the term and without the abstraction (which knows headings), h depends on the cell only.
+          if (!coarse) {
+            ASSERT_EQ(b, po.anchor(x, y, 0)) << x << "," << y << "," << h;
+          }
+        }
+      }
+    }
+    EXPECT_GT(differs, 0) << "the turning term changed nothing";
+  }
+}
+
 // Exhaustive cost-to-go on a small lattice (reverse Dijkstra over all edges): h0 never exceeds it.
 TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
   auto map = test::randomMap(40, 30, 0.05, 21, 10, 120);
