@@ -74,6 +74,10 @@ class LazyQueue {
   }
 
   std::size_t memoryBytes() const { return store_.capacity() * sizeof(QueueEntry); }
+  /// Bytes the next push() allocates (0 unless the storage is full and must double).
+  std::size_t growthBytes() const {
+    return store_.size() < store_.capacity() ? 0 : store_.capacity() * sizeof(QueueEntry);
+  }
 
  private:
   // The root is store_[kPad]; node i's children are 4i+1..4i+4, i.e. store_[4(i+1)..4(i+1)+3],

@@ -19,6 +19,7 @@ std::size_t MhaEngine::engineBytes() const {
 void MhaEngine::growArrays(std::size_t cap) {
   // Append fresh records (g = infinity, no parent, no flags, in no queue).
   const std::size_t old_size = rec_.size();
+  rec_.reserve(cap * stride_);  // exactly: resize() alone would double, past the memory cap
   rec_.resize(cap * stride_);
   for (std::size_t w = old_size; w < rec_.size(); w += stride_) {
     std::memcpy(rec_.data() + w, fresh_.data(), stride_ * sizeof(std::uint32_t));
@@ -121,6 +122,7 @@ bool MhaEngine::improvePath() {
   const StateId goal = problem_->goal();
   const std::size_t n_inad = nh_ - 1;
   for (;;) {
+    if (stopped()) return false;  // e.g. a queue could not grow: OPEN is incomplete
     if (!cleanTop(0)) return true;
     const double min0 = open_[0].top().f;
     // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min().
@@ -171,11 +173,11 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     if (h(t, 0) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
     // The new g changes every key, so t's old entries are stale; push fresh ones.
     const QueueEntry k0 = key(t, 0);
-    pushOpen(0, k0);
+    if (!pushOpen(0, k0)) return;
     if (f & kClosedInad) continue;
     for (std::size_t i = 1; i < nh_; ++i) {
       if (admits(t, i, k0.f)) {
-        pushOpen(i, key(t, i));
+        if (!pushOpen(i, key(t, i))) return;
       } else {
         // A lower g can make the test fail; keep OPEN_i exactly the states that pass it.
         clearInOpen(t, i);

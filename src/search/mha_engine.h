@@ -102,9 +102,14 @@ class MhaEngine : public SearchBase {
     }
     return false;
   }
-  void pushOpen(std::size_t i, const QueueEntry& e) {
-    open_[i].push(e);
+  /// False if the queue would have to grow beyond the memory cap: the search then stops
+  /// (kMemoryLimit) without reporting anything more, since OPEN_i is no longer complete.
+  bool pushOpen(std::size_t i, const QueueEntry& e) {
+    LazyQueue& q = open_[i];
+    if (q.growthBytes() > 0 && !roomFor(q.growthBytes())) return !stopWith(SearchStatus::kMemoryLimit);
+    q.push(e);
     setInOpen(e.id, i);
+    return true;
   }
 
   Cost gOf(StateId s) const override { return g(s); }
