@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Renders a soak run's JSON summary (scripts/soak ... --json FILE) as the Markdown page
+docs/results/robustness.md:
+    /usr/bin/python3 test/ros/soak_report.py FILE.json --command "scripts/soak 600 ..." \
+        --commit abc1234 > docs/results/robustness.md
+Every figure on the page comes from the JSON; nothing is typed in by hand."""
+import argparse
+import json
+import sys
+
+# The client-side outcomes that are not answers from the server (see soak.py for each).
+CLIENT_SIDE = {
+    "LOST_by_client_after_early_cancel": "the Python action client marked the goal LOST: its cancel overtook the goal, which the server never received",
+    "LOST_by_client_while_running": "the Python action client gave a running goal up as LOST after a status message without it; the server had answered",
+    "RECALLED_by_actionlib": "cancelled before the server saw it; actionlib answered RECALLED itself",
+    "result_lost_in_transport_after_terminal_status": "the goal reached a terminal state on the server but its result message did not reach the client within 5 s",
+}
+
+
+def table(header, rows):
+    out = ["| " + " | ".join(header) + " |", "|" + "|".join("---" if i == 0 else "---:" for i in range(len(header))) + "|"]
+    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("json")
+    ap.add_argument("--command", default="scripts/soak 600 --json FILE")
+    ap.add_argument("--commit", default="unknown")
+    ap.add_argument("--machine", default="")
+    args = ap.parse_args()
+    d = json.load(open(args.json))
+    p = []
+    w = p.append
+    ok = d["failure_count"] == 0 and d["node_alive_at_end"]
+    w("# Robustness: the soak test's figures\n")
+    w("How the soak test works and what it checks: [../robustness.md](../robustness.md#soak-test). "
+      "This page is rendered from one run's JSON summary by `test/ros/soak_report.py`.\n")
+    w("```\n%s\n```\n" % args.command)
+    w("Commit `%s`%s.\n" % (args.commit, (", " + args.machine) if args.machine else ""))
+    w("## Result\n")
+    w("**%s**: %d requests in %.0f s from %s, %d failures; the node was %s at the end. "
+      "%d paths (%d solutions, counting every improved path of an anytime answer) were replayed "
+      "against the maps in use and passed.\n" % (
+          "PASSED" if ok else "FAILED", d["requests"], d["seconds"],
+          ", ".join("%s %d" % (k, v) for k, v in sorted(d["by_interface"].items())),
+          d["failure_count"], "alive" if d["node_alive_at_end"] else "DEAD",
+          d["paths_checked"], d["solutions_checked"]))
+    if d["failures"]:
+        w("Failures:\n")
+        for f in d["failures"][:50]:
+            w("- " + f)
+        w("")
+
+    w("## Answers by kind of request\n")
+    statuses = sorted({s for kinds in d["answers_by_kind"].values() for s in kinds})
+    rows = []
+    for kind in sorted(d["answers_by_kind"]):
+        a = d["answers_by_kind"][kind]
+        rows.append([kind, d["by_kind"].get(kind, 0)] + [a.get(s, "") for s in statuses])
+    w(table(["kind", "sent"] + statuses, rows) + "\n")
+    w("Statuses as the server answered them (`make_plan` answers carry no status: an empty or a "
+      "non-empty path). `BUSY`: one plan runs and two wait; a request beyond that is refused at "
+      "once (docs/ros.md). Valid requests are drawn on the map in use when they are sent; a map "
+      "update can land before they run, hence some `OUT_OF_MAP` and `INVALID_START` answers to them.")
+    if ok:
+        w("The script checked every answer against the statuses expected for its kind (`BUSY`, or "
+          "`CANCELLED` when it had cancelled the request, are accepted for any kind); none got "
+          "`INTERNAL_ERROR` or an unexpected status.\n")
+    else:
+        w("")
+    client = [(k, d["answers"][k], CLIENT_SIDE[k]) for k in CLIENT_SIDE if d["answers"].get(k)]
+    if client:
+        w("Outcomes on the client side, not answers from the server (the script counts them apart; "
+          "they are not failures of the node):\n")
+        w(table(["outcome", "count", "what it is"], client) + "\n")
+
+    w("## Cancels and map updates\n")
+    lat = d.get("cancel_latency_running", {})
+    w("- Cancels sent: %d (40 %% of `~plan_anytime` goals, after 0-1 s). Of the goals already "
+      "running when cancelled, %d were timed: median %.1f ms, max %.1f ms from the cancel to the "
+      "result (the check: under 1 s)." % (d["cancels_sent"], lat.get("count", 0),
+                                           lat.get("median_ms", float("nan")), lat.get("max_ms", float("nan"))))
+    mu = d["map_updates"]
+    bad = mu.get("malformed", {})
+    w("- Map updates while planning: %d valid (the Willow Garage map or random synthetic maps), "
+      "%d malformed, all refused with the current map kept: %s.\n" % (
+          mu.get("valid", 0), sum(bad.values()), ", ".join("%s %d" % kv for kv in sorted(bad.items()))))
+
+    w("## Memory\n")
+    w("At the start, middle and end the script pauses the traffic, sends the same map and two "
+      "reference requests, and reads the node's memory: `heap in use` is glibc's count of "
+      "allocated bytes (read with gdb, `malloc_stats`), the figure that shows a leak; RSS also "
+      "counts freed memory glibc keeps for reuse. The check: heap in use (or RSS without gdb) "
+      "must not grow from the middle to the end by more than 10 % + 16 MB.\n")
+    rows = []
+    for c in d["checkpoints"]:
+        rows.append([c["label"], "%.0f s" % c["t_s"], c["requests_so_far"],
+                     "%.1f MB" % (c["heap_in_use_kb"] / 1024.0) if c.get("heap_in_use_kb") is not None else "-",
+                     "%.1f MB" % (c["rss_kb"] / 1024.0), "%.1f MB" % (c["hwm_kb"] / 1024.0),
+                     ", ".join(c.get("reference_requests", []))])
+    w(table(["checkpoint", "time", "requests so far", "heap in use", "RSS", "peak RSS so far", "reference requests"], rows) + "\n")
+    w("Growth from the middle to the end: heap in use %+d KB, RSS %+d KB. RSS sampled every 2 s: "
+      "%d samples, %.1f MB to %.1f MB (it rises and falls with each request's search and the map "
+      "in use).\n" % (d.get("heap_in_use_growth_middle_to_end_kb", 0), d.get("rss_growth_middle_to_end_kb", 0),
+                     d["rss_kb_samples"]["count"], d["rss_kb_samples"]["min"] / 1024.0,
+                     d["rss_kb_samples"]["max"] / 1024.0))
+    sys.stdout.write("\n".join(p))
+
+
+if __name__ == "__main__":
+    main()
