@@ -176,8 +176,9 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     if (!pushOpen(0, k0)) return;
     if (f & kClosedInad) continue;
     for (std::size_t i = 1; i < nh_; ++i) {
-      if (admits(t, i, k0.f)) {
-        if (!pushOpen(i, key(t, i))) return;
+      const QueueEntry ki = key(t, i);  // Expand's admission test, with the key computed once
+      if (ki.h != kInfiniteHeuristic && ki.f <= w2_ * k0.f) {
+        if (!pushOpen(i, ki)) return;
       } else {
         // A lower g can make the test fail; keep OPEN_i exactly the states that pass it.
         clearInOpen(t, i);
