@@ -90,11 +90,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   if (!o.footprint.empty() && o.radius >= 0.0) throw std::invalid_argument("give --footprint or --radius, not both");
   if (!o.footprint.empty()) c.footprint = parseFootprint(o.footprint);
   if (o.radius >= 0.0) c.robot_radius = o.radius;
-  if (out.is_sbpl_env) {
-    c.cost_penalty = 252.0;
-    c.nominal_speed = out.env.nominal_speed;
-    c.time_to_turn_45 = out.env.time_to_turn_45;
-  }
+  if (out.is_sbpl_env) lattice::useSbplCostModel(out.env, c);
   if (o.cost_penalty >= 0.0) c.cost_penalty = o.cost_penalty;
   if (o.nominal_speed >= 0.0) c.nominal_speed = o.nominal_speed;
   if (o.turn_time_45 >= 0.0) c.time_to_turn_45 = o.turn_time_45;

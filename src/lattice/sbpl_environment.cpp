@@ -116,5 +116,11 @@ GridMap loadMapFile(const std::string& path, double movingai_resolution, int mov
                      path + ": unknown map format (expected .yaml, .map or .cfg)");
 }
 
+void useSbplCostModel(const SbplEnvironment& env, LatticeConfig& config) {
+  config.cost_penalty = 252.0;
+  config.nominal_speed = env.nominal_speed;
+  config.time_to_turn_45 = env.time_to_turn_45;
+}
+
 }  // namespace lattice
 }  // namespace amha

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "amha_planner/search/big_array_allocator.h"
+#include "big_array_allocator.h"
 #include "amha_planner/search/types.h"
 
 namespace amha {

@@ -72,7 +72,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     const QueueEntry k0 = key(start, 0);
     pushOpen(0, k0);
     for (std::size_t i = 1; i < nh_; ++i) {
-      if (admits(start, i, k0.f)) pushOpen(i, key(start, i));
+      const QueueEntry ki = key(start, i);
+      if (admits(ki, k0.f)) pushOpen(i, ki);
     }
   }
 
@@ -176,8 +177,8 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     if (!pushOpen(0, k0)) return;
     if (f & kClosedInad) continue;
     for (std::size_t i = 1; i < nh_; ++i) {
-      const QueueEntry ki = key(t, i);  // Expand's admission test, with the key computed once
-      if (ki.h != kInfiniteHeuristic && ki.f <= w2_ * k0.f) {
+      const QueueEntry ki = key(t, i);
+      if (admits(ki, k0.f)) {
         if (!pushOpen(i, ki)) return;
       } else {
         // A lower g can make the test fail; keep OPEN_i exactly the states that pass it.
@@ -215,10 +216,11 @@ void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
   for (std::size_t i = 1; i < nh_; ++i) {
     open_[i].clear();
-    for (StateId s : members_) {
-      if (admits(s, i, key(s, 0).f)) {
-        open_[i].appendUnordered(key(s, i));
-        setInOpen(s, i);
+    for (const QueueEntry& e0 : open_[0]) {  // exactly the members, with their new key_0
+      const QueueEntry ki = key(e0.id, i);
+      if (admits(ki, e0.f)) {
+        open_[i].appendUnordered(ki);
+        setInOpen(e0.id, i);
       }
     }
     open_[i].heapify();
@@ -263,7 +265,7 @@ void MhaEngine::checkInvariants() const {
       if (i > 0) {
         if (flags(s) & kClosedInad) fail("CLOSED_inad state in OPEN_" + std::to_string(i));
         if (!inOpen(s, 0)) fail("OPEN_i is not a subset of OPEN_0");
-        if (!admits(s, i, key(s, 0).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
+        if (!admits(key(s, i), key(s, 0).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
       }
     }
     // Every state marked as a member has exactly one entry with its current key.

@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "amha_planner/search/big_array_allocator.h"
+#include "big_array_allocator.h"
 #include "lazy_queue.h"
 #include "search_base.h"
 
@@ -71,9 +71,9 @@ class MhaEngine : public SearchBase {
     const HeuristicValue hv = h(s, i);
     return QueueEntry{static_cast<double>(g(s)) + w1_ * static_cast<double>(hv), hv, s};
   }
-  // Expand's admission test for OPEN_i (i >= 1): finite h_i and key_i <= w2 * key_0.
-  bool admits(StateId s, std::size_t i, double key0) const {
-    return h(s, i) != kInfiniteHeuristic && key(s, i).f <= w2_ * key0;
+  // Expand's admission test for OPEN_i (i >= 1), given key_i: finite h_i and key_i <= w2 * key_0.
+  bool admits(const QueueEntry& key_i, double key0) const {
+    return key_i.h != kInfiniteHeuristic && key_i.f <= w2_ * key0;
   }
 
   // Queue membership.
@@ -95,9 +95,7 @@ class MhaEngine : public SearchBase {
   bool cleanTop(std::size_t i) {
     LazyQueue& q = open_[i];
     while (!q.empty()) {
-      const QueueEntry& t = q.top();
-      __builtin_prefetch(rec(t.id));
-      if (isMember(i, t)) return true;
+      if (isMember(i, q.top())) return true;
       q.pop();
     }
     return false;

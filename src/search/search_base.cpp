@@ -27,7 +27,7 @@ bool SearchBase::grow(StateId id) {
   // to the largest capacity that still fits (never one state at a time: that is quadratic).
   const std::size_t per_state = capacity_ > 0 ? (engineBytes() + capacity_ - 1) / capacity_ : 64;
   const std::size_t cap_bytes = limits_.max_memory_bytes;
-  if (cap_bytes != SearchLimits().max_memory_bytes) {
+  if (hasMemoryCap()) {
     const std::size_t domain = problem_->memoryBytes();
     const std::size_t fit = domain < cap_bytes ? (cap_bytes - domain) / per_state : 0;
     if (fit <= id) {

@@ -47,9 +47,9 @@ class SearchBase {
   /// Whether `extra` more bytes stay within the memory cap (queues check before they double;
   /// the cap's own check runs every 4096 expansions, too late for a doubling of a big queue).
   bool roomFor(std::size_t extra) const {
-    return limits_.max_memory_bytes == SearchLimits().max_memory_bytes ||
-           memoryBytes() + extra <= limits_.max_memory_bytes;
+    return !hasMemoryCap() || memoryBytes() + extra <= limits_.max_memory_bytes;
   }
+  bool hasMemoryCap() const { return limits_.max_memory_bytes != SearchLimits().max_memory_bytes; }
 
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
 

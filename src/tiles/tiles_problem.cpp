@@ -5,7 +5,6 @@
 #include <memory>
 #include <stdexcept>
 
-#include "amha_planner/search/big_array_allocator.h"
 #include "line_conflict.h"
 
 namespace amha {
@@ -164,15 +163,16 @@ class TilesSpace final : public TilesProblem {
   static constexpr std::size_t kChunkStates = std::size_t{1} << kChunkBits;
   static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << B) - 1;
 
-  // Chunks of 2^18 boards never move, so growing the arena copies nothing.
+  // Chunks of 2^18 boards never move, so growing the arena copies nothing. Left
+  // uninitialised: insertAt writes every slot before it is read.
   struct Chunk {
-    std::vector<std::uint64_t, BigArrayAllocator<std::uint64_t>> words;
-    std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> info;
-    std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> from;  // see fromOf()
+    std::unique_ptr<std::uint64_t[]> words;
+    std::unique_ptr<std::uint32_t[]> info;
+    std::unique_ptr<std::uint32_t[]> from;  // see fromOf()
   };
 
   const std::uint64_t* words(StateId s) const {
-    return chunks_[s >> kChunkBits].words.data() + (s & (kChunkStates - 1)) * W;
+    return chunks_[s >> kChunkBits].words.get() + (s & (kChunkStates - 1)) * W;
   }
   std::uint32_t infoOf(StateId s) const {
     return chunks_[s >> kChunkBits].info[s & (kChunkStates - 1)];
@@ -298,14 +298,14 @@ class TilesSpace final : public TilesProblem {
     const StateId id = static_cast<StateId>(count_);
     if ((count_ & (kChunkStates - 1)) == 0) {
       Chunk c;
-      c.words.resize(kChunkStates * W);
-      c.info.resize(kChunkStates);
-      c.from.resize(kChunkStates);
+      c.words.reset(new std::uint64_t[kChunkStates * W]);
+      c.info.reset(new std::uint32_t[kChunkStates]);
+      c.from.reset(new std::uint32_t[kChunkStates]);
       chunks_.push_back(std::move(c));
     }
     Chunk& c = chunks_.back();
     const std::size_t off = count_ & (kChunkStates - 1);
-    std::memcpy(c.words.data() + off * W, w, sizeof(std::uint64_t) * W);
+    std::memcpy(c.words.get() + off * W, w, sizeof(std::uint64_t) * W);
     c.info[off] = info;
     c.from[off] = from;
     ++count_;
@@ -329,7 +329,7 @@ class TilesSpace final : public TilesProblem {
   StateId start_ = 0, goal_ = 0;
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
-  std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> slots_;
+  std::vector<std::uint32_t> slots_;
   std::size_t mask_ = 0;
   std::uint32_t id_mask_ = 0;
   int shift_ = 0;

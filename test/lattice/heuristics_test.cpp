@@ -169,9 +169,7 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
   LatticeConfig c;
   c.mprim_file = data + "/sbpl/pr2.mprim";
   c.footprint = test::rectangle(0.01, 0.01);
-  c.cost_penalty = 252.0;
-  c.nominal_speed = env.nominal_speed;
-  c.time_to_turn_45 = env.time_to_turn_45;
+  useSbplCostModel(env, c);
   LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);
   checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
   checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);

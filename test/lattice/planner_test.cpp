@@ -321,9 +321,7 @@ TEST(LatticePlannerTest, CubicleWithPr2PrimitivesValidates) {
   LatticeConfig c;
   c.mprim_file = data + "/sbpl/pr2.mprim";
   c.footprint = test::rectangle(0.01, 0.01);
-  c.cost_penalty = 252.0;
-  c.nominal_speed = env.nominal_speed;
-  c.time_to_turn_45 = env.time_to_turn_45;
+  useSbplCostModel(env, c);
   LatticeGraph g(map, c);
   HeuristicGridBuilder b(g);
   LatticeState s, t;

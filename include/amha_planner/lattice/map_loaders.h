@@ -81,6 +81,10 @@ struct SbplEnvironment {
 /// thresholds (254 / 253) the costs are unchanged. Row 0 of the file is y = 0.
 SbplEnvironment loadSbplEnvironment(const std::string& path);
 
+/// Sets `config`'s cost model to SBPL's for this environment: cost = time x multiplier x
+/// (cell cost + 1) (cost_penalty 252), at the file's speed and turn-in-place time.
+void useSbplCostModel(const SbplEnvironment& env, LatticeConfig& config);
+
 /// Loads a map by extension: ".yaml"/".yml" (map_server), ".map" (Moving AI, needs
 /// resolution > 0), ".cfg" (SBPL; `env` receives the whole environment if not null).
 GridMap loadMapFile(const std::string& path, double movingai_resolution, int movingai_upscale,
