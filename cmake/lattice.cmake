@@ -1,11 +1,12 @@
 # The (x, y, theta) lattice domain: maps, motion primitives, footprints, heuristics and the
 # LatticePlanner facade (ROS-free), plus `amha plan` and `amha bench lattice`.
 find_package(yaml-cpp REQUIRED)
-find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc)
 
 add_library(amha_lattice
   src/lattice/occupancy.cpp
   src/lattice/map_server_map.cpp
+  src/lattice/image_file.cpp
   src/lattice/movingai_map.cpp
   src/lattice/sbpl_environment.cpp
   src/lattice/primitive_set.cpp
@@ -22,7 +23,13 @@ add_library(amha_lattice
 target_include_directories(amha_lattice PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
 target_include_directories(amha_lattice SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_link_libraries(amha_lattice PUBLIC amha_search PRIVATE yaml-cpp ${OpenCV_LIBS} Threads::Threads)
+target_include_directories(amha_lattice PRIVATE src/image_codecs)
+# No opencv_imgcodecs: image files go through the module of image_codecs.cmake, loaded on first
+# use (image_file.h); building anything that links amha_lattice builds the module too.
+target_link_libraries(amha_lattice PUBLIC amha_search
+                      PRIVATE yaml-cpp opencv_core opencv_imgproc ${CMAKE_DL_LIBS} Threads::Threads)
+add_dependencies(amha_lattice amha_image_codecs)
+set_target_properties(amha_lattice PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${AMHA_LIBRARY_DIR})
 
 target_sources(amha PRIVATE
   src/cli/lattice_options.cpp
@@ -42,5 +49,12 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/footprint_test.cpp
     test/lattice/heuristics_test.cpp
     test/lattice/planner_test.cpp
-  LIBS amha_lattice ${OpenCV_LIBS})
+  LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
+
+# The codecs module stays out of processes that read no image file. No imgcodecs link here:
+# the test looks for it in /proc/self/maps.
+amha_add_gtest(amha_image_codecs_tests
+  SOURCES test/lattice/image_codecs_test.cpp test/lattice/test_support.cpp
+  LIBS amha_lattice opencv_core)
+target_include_directories(amha_image_codecs_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})

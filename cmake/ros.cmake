@@ -28,7 +28,7 @@ target_link_libraries(map_publisher PRIVATE amha_ros)
 # The demo's client: asks for a plan, prints every improvement, draws them on the map.
 add_executable(demo_client src/ros/demo_client.cpp)
 target_include_directories(demo_client PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_link_libraries(demo_client PRIVATE amha_ros ${OpenCV_LIBS})
+target_link_libraries(demo_client PRIVATE amha_ros opencv_core opencv_imgproc)  # PNG: image_file.h
 
 # Debian's pluginlib 5 finds nodelets through the ament resource index of each prefix in
 # AMENT_PREFIX_PATH; write it into the devel space (and install it below).
@@ -40,8 +40,9 @@ configure_file(nodelet_plugins.xml ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/
                COPYONLY)
 configure_file(package.xml ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/package.xml COPYONLY)
 
-# The libraries the nodelet loads (catkin builds them shared) go to the install space too.
-foreach(_lib amha_search amha_lattice)
+# The libraries the nodelet loads (catkin builds them shared) and the image codecs module they
+# dlopen from their own directory go to the install space too.
+foreach(_lib amha_search amha_lattice amha_image_codecs)
   if(TARGET ${_lib})
     install(TARGETS ${_lib} LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
             ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})

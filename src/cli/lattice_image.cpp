@@ -4,8 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "amha_planner/lattice/image_file.h"
 
 namespace amha {
 namespace cli {
@@ -76,7 +77,7 @@ void writePlanImage(const std::string& png, const lattice::GridMap& map,
   };
   marker(start, cv::Scalar(0, 160, 0));
   marker(goal, cv::Scalar(0, 0, 220));
-  if (!cv::imwrite(png, img)) throw std::runtime_error("cannot write " + png);
+  lattice::writeImageFile(png, img);  // throws "cannot write <path>..."
 }
 
 }  // namespace cli

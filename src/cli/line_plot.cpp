@@ -6,8 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "amha_planner/lattice/image_file.h"
 
 namespace amha {
 namespace cli {
@@ -133,7 +134,7 @@ void writeLinePlot(const std::string& png_path, const std::vector<PlotSeries>& s
     cv::putText(img, s.label, {right + 52, legend_y + 5}, font, 0.5, black, 1, cv::LINE_AA);
     legend_y += 24;
   }
-  if (!cv::imwrite(png_path, img)) throw std::runtime_error("cannot write " + png_path);
+  lattice::writeImageFile(png_path, img);  // throws "cannot write <path>..."
 }
 
 }  // namespace cli

@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include "amha_planner/lattice/image_file.h"
 #include "amha_planner/lattice/map_loaders.h"
 
 namespace amha {
@@ -177,11 +177,11 @@ std::vector<std::int8_t> mapServerOccupancy(const MapServerYaml& y, int* width, 
   if (headerSize(y.image, &header_w, &header_h) && header_w * header_h > kMaxCells) too_big(header_w, header_h);
   cv::Mat img;
   try {
-    img = cv::imread(y.image, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {  // e.g. OpenCV's own size limit
-    fail(y.image, std::string("cannot read the image: ") + e.what());
+    img = readImageFile(y.image, ImageReadMode::kAsIs);  // loads the codecs module on first use
   } catch (const std::bad_alloc&) {
     fail(y.image, "not enough memory to decode the image");
+  } catch (const std::runtime_error& e) {  // OpenCV's own size limit, or no codecs module
+    fail(y.image, std::string("cannot read the image: ") + e.what());
   }
   if (img.empty()) fail(y.image, "cannot read the image (missing file or unsupported format)");
   if (static_cast<std::uint64_t>(img.cols) * static_cast<std::uint64_t>(img.rows) > kMaxCells) {

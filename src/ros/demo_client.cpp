@@ -15,12 +15,12 @@
 
 #include <actionlib/client/simple_action_client.h>
 #include <nav_msgs/OccupancyGrid.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "amha_planner/PlanAnytimeAction.h"
+#include "amha_planner/lattice/image_file.h"
 #include "amha_planner/ros/conversions.h"
 
 namespace {
@@ -105,12 +105,14 @@ void drawPicture(const nav_msgs::OccupancyGrid& map,
   cv::putText(image, caption, {12, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.7, {0, 0, 0}, 2, cv::LINE_AA);
   cv::putText(image, "start green, goal red; each improved path, early orange .. final blue",
               {12, 56}, cv::FONT_HERSHEY_SIMPLEX, 0.55, {60, 60, 60}, 1, cv::LINE_AA);
-  if (!cv::imwrite(path, image)) {
-    ROS_ERROR("demo_client: could not write %s", path.c_str());
-  } else {
-    std::printf("demo: picture of the map with %zu distinct improved path(s) saved to %s\n",
-                distinct.size(), path.c_str());
+  try {
+    amha::lattice::writeImageFile(path, image);  // the codecs module, loaded on first use
+  } catch (const std::exception& e) {
+    ROS_ERROR("demo_client: could not write %s: %s", path.c_str(), e.what());
+    return;
   }
+  std::printf("demo: picture of the map with %zu distinct improved path(s) saved to %s\n",
+              distinct.size(), path.c_str());
 }
 
 }  // namespace
