@@ -3,9 +3,10 @@ find_package(OpenCV REQUIRED COMPONENTS core imgproc)
 find_package(nlohmann_json REQUIRED)
 find_package(CLI11 REQUIRED)
 
-# Output helpers shared by the commands and benchmarks: JSON run records, PNG line plots (the
-# PNG files are written through amha_lattice's image codecs module: no imgcodecs link here).
-add_library(amha_cli_support src/cli/run_json.cpp src/cli/line_plot.cpp)
+# Helpers shared by the commands and benchmarks: JSON run records, PNG line plots, allocator
+# tuning. The PNG files are written through amha_lattice's image codecs module: no imgcodecs.
+add_library(amha_cli_support src/cli/run_json.cpp src/cli/line_plot.cpp
+            src/cli/keep_freed_memory.cpp)
 target_include_directories(amha_cli_support PUBLIC src/cli ${OpenCV_INCLUDE_DIRS})
 target_link_libraries(amha_cli_support PUBLIC amha_search nlohmann_json::nlohmann_json
                       opencv_core opencv_imgproc PRIVATE amha_lattice)

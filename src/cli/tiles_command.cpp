@@ -20,6 +20,7 @@
 #include "amha_planner/tiles/tiles_problem.h"
 #include "command_registry.h"
 #include "exit_codes.h"
+#include "keep_freed_memory.h"
 #include "line_plot.h"
 #include "run_json.h"
 #include "tiles_report.h"
@@ -47,6 +48,7 @@ struct Options {
   int jobs = 1;
   std::string json, write_instances, plot, markdown;
   bool quiet = false;
+  bool fresh_memory = false;
 };
 
 PlannerConfig configFor(Algorithm a, const Options& o) {
@@ -143,6 +145,9 @@ int runTiles(int argc, char** argv) {
   app.add_option("--plot", o.plot, "write a PNG of the median certified bound vs time per algorithm");
   app.add_option("--markdown", o.markdown, "write the summary table as Markdown to FILE");
   app.add_flag("--quiet,-q", o.quiet, "no progress lines");
+  app.add_flag("--fresh-memory", o.fresh_memory,
+               "let every run fault in fresh pages (default: reuse the memory of earlier runs, "
+               "as a long-lived planner does)");
   try {
     app.parse(argc, argv);
     if (random_opt->count() == 0 && file_opt->count() == 0) {
@@ -160,6 +165,7 @@ int runTiles(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
+  if (!o.fresh_memory) keepFreedMemoryMapped();
 
   std::vector<Algorithm> algorithms;
   {
@@ -352,6 +358,7 @@ int runTiles(int argc, char** argv) {
           {"w1", o.w1}, {"w2", o.w2}, {"dw1", o.dw1}, {"dw2", o.dw2},
           {"ara_eps", o.eps}, {"ara_deps", o.deps}, {"wastar_weight", o.weight},
           {"memory_limit_gb", o.memory_limit_gb}, {"jobs", o.jobs},
+          {"fresh_memory", o.fresh_memory},
           {"hardware_threads", std::thread::hardware_concurrency()}};
       extra["heuristics"] = {{"anchor", "MD + LC"},
                              {"inadmissible", "round(md*MD + lc*LC + mt*MT)"},

@@ -202,6 +202,10 @@ class DialQueue {
     --size_;
     return {cur_, v};
   }
+  std::uint32_t upcoming(std::size_t ahead, std::uint32_t fallback) const {
+    const std::vector<std::uint32_t>& b = buckets_[cur_ & mask_];
+    return b.size() > ahead ? b[b.size() - 1 - ahead] : fallback;
+  }
 
  private:
   std::vector<std::vector<std::uint32_t>> buckets_;
@@ -254,6 +258,8 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
 // The 8-connected case, unrolled: the four side neighbours are read once and serve as the
 // corner cells of the diagonal moves. Same result as the generic loop (moves in gridMoves(8)
 // order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1)).
+constexpr std::size_t kPrefetchAhead = 4;
+
 template <class Queue>
 bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
                                      const GridStop* stop) const {
@@ -274,6 +280,17 @@ bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
     // Not a structured binding: clang before 16 cannot capture one in the lambda below.
     const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
     const std::uint32_t d = top.first, i = top.second;
+    // Cells of one key lie scattered along the wavefront: load the distance and the level
+    // rows of the cell popped a few pops from now (the stale check below was a fifth of the
+    // time on large cost maps).
+    {
+      const std::uint32_t a = queue.upcoming(kPrefetchAhead, i);
+      __builtin_prefetch(dist + a);
+      __builtin_prefetch(dist + a - pw);
+      __builtin_prefetch(dist + a + pw);
+      __builtin_prefetch(level + a - pw);
+      __builtin_prefetch(level + a + pw);
+    }
     if (d != dist[i]) continue;
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned c0 = level[i];

@@ -35,6 +35,12 @@ class RadixHeap {
     --size_;
     return e;
   }
+  /// The value popped `ahead` pops from now if no push comes first (else any value), for
+  /// prefetching; `fallback` if unknown.
+  std::uint32_t upcoming(std::size_t ahead, std::uint32_t fallback) const {
+    const auto& b = buckets_[0];
+    return b.size() > ahead ? b[b.size() - 1 - ahead].second : fallback;
+  }
 
  private:
   int bucket(std::uint32_t key) const { return key == last_ ? 0 : 32 - __builtin_clz(key ^ last_); }

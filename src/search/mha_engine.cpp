@@ -138,6 +138,11 @@ bool MhaEngine::improvePath() {
     const StateId s = open_[q].top().id;
     problem_->prefetch(s);  // overlaps with the pop's walk down the heap
     open_[q].pop();
+    // The next round tests the tops of OPEN_0 and of the next OPEN_i against their records:
+    // start loading those now, while s is expanded (if expand() changes a top, the hint is
+    // merely wasted).
+    prefetchTopRecord(0);
+    if (n_inad > 0) prefetchTopRecord(1 + round_robin_);
     expand(s, q);
     flags(s) |= (q == 0) ? kClosedAnch : kClosedInad;
   }

@@ -88,6 +88,12 @@ class MhaEngine : public SearchBase {
     std::uint32_t* m = rec(s) + kHeaderWords + nh_;
     for (std::size_t w = 0; w < member_words_; ++w) m[w] = 0;
   }
+  void prefetchTopRecord(std::size_t i) const {
+    if (open_[i].empty()) return;
+    const std::uint32_t* r = rec(open_[i].top().id);
+    __builtin_prefetch(r);
+    __builtin_prefetch(r + stride_ - 1);  // a record can straddle two cache lines
+  }
   bool isMember(std::size_t i, const QueueEntry& e) const {
     return inOpen(e.id, i) && key(e.id, i).f == e.f;
   }
