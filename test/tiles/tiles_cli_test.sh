@@ -48,6 +48,22 @@ for r in b['runs']:
     assert r['status'] == 'proven_optimal' and r['solutions'][-1]['bound'] == 1, r['status']
 " "$tmp/out.json" "$tmp/again.json" || fail "instances differ after a round trip, or A* failed"
 
+# Reused memory (the default) and fresh pages per run give the same searches: a run that read
+# memory it did not write would differ (reused blocks hold old states, fresh pages zeros).
+for mode in reuse fresh; do
+  flag=(); [ "$mode" = fresh ] && flag=(--fresh-memory)
+  "$amha" tiles --size 5 --random 4 --seed 3 --algorithms amha,ara,ana --max-expansions 30000 \
+    --time-limit 30 --quiet "${flag[@]}" --json "$tmp/$mode.json" > /dev/null || fail "$mode run failed"
+done
+/usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+assert a['settings']['fresh_memory'] is False and b['settings']['fresh_memory'] is True
+key = lambda d: [(r['status'], r['expansions'], [(s['cost'], s['expansions']) for s in r['solutions']]) for r in d['runs']]
+assert key(a) == key(b), 'searches differ between reused and fresh memory'
+assert sum(len(r['solutions']) for r in a['runs']) > 0
+" "$tmp/reuse.json" "$tmp/fresh.json" || fail "reused memory changed a search"
+
 expect() {  # expected exit code, arguments...
   local want=$1 got=0; shift
   "$amha" tiles "$@" --quiet > /dev/null 2> "$tmp/err" || got=$?
