@@ -24,6 +24,7 @@ std::vector<GridMove> gridMoves(int connectivity) {
     m.length = std::hypot(dx, dy);
     rasterizeSegment({0.5, 0.5}, {dx + 0.5, dy + 0.5}, m.required);
     uniqueCells(m.required);
+    m.either_side = std::abs(dx) == 1 && std::abs(dy) == 1;
     moves.push_back(std::move(m));
   };
   for (int dy = -1; dy <= 1; ++dy) {
@@ -61,14 +62,20 @@ double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std
     if (top.first != d[u]) continue;
     if (u == dst) return d[u];
     for (const GridMove& mv : moves) {
+      // Ends present, and every other required cell (or, for either_side, at least one).
+      int sides = 0, sides_present = 0;
       bool ok = true;
       for (const CellOffset& r : mv.required) {
-        if (index({cs[u].dx + r.dx, cs[u].dy + r.dy}) == m) {
-          ok = false;
-          break;
+        const bool end = (r.dx == 0 && r.dy == 0) || (r.dx == mv.dx && r.dy == mv.dy);
+        const bool present = index({cs[u].dx + r.dx, cs[u].dy + r.dy}) != m;
+        if (end || !mv.either_side) {
+          ok = ok && present;
+        } else {
+          ++sides;
+          sides_present += present;
         }
       }
-      if (!ok) continue;
+      if (!ok || (sides > 0 && sides_present == 0)) continue;
       const std::size_t v = index({cs[u].dx + mv.dx, cs[u].dy + mv.dy});
       if (v < m && d[u] + mv.length < d[v]) {
         d[v] = d[u] + mv.length;
@@ -153,6 +160,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   kind.move_offsets.clear();
   kind.required.clear();
   kind.required_count.clear();
+  kind.either_side.clear();
   kind.step.assign(moves.size() * 256, 0);
   kind.max_step = 0;
   for (std::size_t m = 0; m < moves.size(); ++m) {
@@ -169,6 +177,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
       ++count;
     }
     kind.required_count.push_back(static_cast<int>(mv.required.size()) - 2);
+    kind.either_side.push_back(mv.either_side ? 1 : 0);
     for (int c = 0; c < 256; ++c) {
       const double step = units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));
@@ -223,6 +232,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
   const std::int64_t* off = kind.move_offsets.data();
   const std::int64_t* req = kind.required.data();
   const int* req_count = kind.required_count.data();
+  const char* either = kind.either_side.data();
   const std::uint32_t* step = kind.step.data();
   dist[goal] = 0;
   queue.push(0, goal);
@@ -237,13 +247,20 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
       if (c == 255) continue;
       c = std::max(c, li);
       const std::int64_t* r = req + m * kMaxRequired;
-      bool blocked = false;
-      for (int k = 0; k < req_count[m]; ++k) {
-        const unsigned lr = level[static_cast<std::int64_t>(i) + r[k]];
-        blocked |= lr == 255;
-        c = std::max(c, lr);
+      if (either[m]) {  // the two side cells: one passable suffices, the cheaper one counts
+        const unsigned side = std::min(level[static_cast<std::int64_t>(i) + r[0]],
+                                       level[static_cast<std::int64_t>(i) + r[1]]);
+        if (side == 255) continue;
+        c = std::max(c, side);
+      } else {
+        bool blocked = false;
+        for (int k = 0; k < req_count[m]; ++k) {
+          const unsigned lr = level[static_cast<std::int64_t>(i) + r[k]];
+          blocked |= lr == 255;
+          c = std::max(c, lr);
+        }
+        if (blocked) continue;
       }
-      if (blocked) continue;
       const std::uint64_t nd = static_cast<std::uint64_t>(d) + step[m * 256 + c];
       if (nd < dist[j]) {
         const std::uint32_t v = static_cast<std::uint32_t>(std::min<std::uint64_t>(nd, kUnreachable - 1));
@@ -308,28 +325,18 @@ bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
     if (le != 255) relax(i + 1, std::max(c0, le), s_e);
     if (ls != 255) relax(i - pw, std::max(c0, ls), s_s);
     if (ln != 255) relax(i + pw, std::max(c0, ln), s_n);
-    if (ls != 255) {
-      const unsigned cs = std::max(c0, ls);
-      if (lw != 255) {
-        const unsigned l = level[i - pw - 1];
-        if (l != 255) relax(i - pw - 1, std::max({cs, lw, l}), s_sw);
-      }
-      if (le != 255) {
-        const unsigned l = level[i - pw + 1];
-        if (l != 255) relax(i - pw + 1, std::max({cs, le, l}), s_se);
-      }
-    }
-    if (ln != 255) {
-      const unsigned cn = std::max(c0, ln);
-      if (lw != 255) {
-        const unsigned l = level[i + pw - 1];
-        if (l != 255) relax(i + pw - 1, std::max({cn, lw, l}), s_nw);
-      }
-      if (le != 255) {
-        const unsigned l = level[i + pw + 1];
-        if (l != 255) relax(i + pw + 1, std::max({cn, le, l}), s_ne);
-      }
-    }
+    // Diagonals (GridMove::either_side): one passable side cell suffices, the cheaper counts;
+    // 255 (blocked) is above every cost class, so min() picks a passable side if there is one.
+    auto diagonal = [&](std::size_t j, unsigned side_a, unsigned side_b, const std::uint32_t* s) {
+      const unsigned side = std::min(side_a, side_b);
+      if (side == 255) return;
+      const unsigned l = level[j];
+      if (l != 255) relax(j, std::max({c0, side, l}), s);
+    };
+    diagonal(i - pw - 1, ls, lw, s_sw);
+    diagonal(i - pw + 1, ls, le, s_se);
+    diagonal(i + pw - 1, ln, lw, s_nw);
+    diagonal(i + pw + 1, ln, le, s_ne);
   }
   return true;
 }

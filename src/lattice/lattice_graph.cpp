@@ -205,7 +205,9 @@ void LatticeGraph::computeAnchorScales() {
   // costlier than its worst cell, so the grid has a walk from start to end cell inside them of
   // length w (walkLength); with grid steps scaled by k <= base / w for every action, every
   // lattice edge costs at least the grid distance between its ends times the same cell-cost
-  // factor, so the grid distance is admissible and consistent.
+  // factor, so the grid distance is admissible and consistent. (A diagonal step of the walk
+  // uses a side cell inside the centre cells; the grid charges the cheaper passable side,
+  // which is no costlier, so the grid distance stays below the walk's cost.)
   //
   // Turning term: an action changes the heading by dtheta (radians), and the heading still to
   // change, |theta - theta_goal|, obeys the triangle inequality on the circle. Adding

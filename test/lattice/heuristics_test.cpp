@@ -28,8 +28,9 @@ TEST(GridMovesTest, RequiredCells) {
   }
 }
 
-// Plain Dijkstra with a binary heap over the same rules (8-connected, corner cells required,
-// cost = floor(units x length x (1 + P c / 252) x fraction)), written independently.
+// Plain Dijkstra with a binary heap over the same rules (8-connected; a diagonal step needs one
+// passable side cell and pays for the cheaper one; cost = floor(units x length x (1 + P c / 252)
+// x fraction)), written independently.
 std::vector<std::uint64_t> referenceGrid(const GridMap& m, int gx, int gy, double units, double pen, int max_class) {
   const int w = m.width, h = m.height;
   auto passable = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class; };
@@ -51,8 +52,10 @@ std::vector<std::uint64_t> referenceGrid(const GridMap& m, int gx, int gy, doubl
         if (!passable(nx, ny)) continue;
         int c = std::max<int>(m.at(x, y), m.at(nx, ny));
         if (dx != 0 && dy != 0) {
-          if (!passable(x + dx, y) || !passable(x, y + dy)) continue;
-          c = std::max<int>({c, m.at(x + dx, y), m.at(x, y + dy)});
+          const bool a = passable(x + dx, y), b = passable(x, y + dy);
+          if (!a && !b) continue;
+          const int side = a && b ? std::min<int>(m.at(x + dx, y), m.at(x, y + dy)) : a ? m.at(x + dx, y) : m.at(x, y + dy);
+          c = std::max(c, side);
         }
         const double step = units * std::hypot(dx, dy) * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
         const std::uint64_t nd = dist + static_cast<std::uint64_t>(std::floor(step));
@@ -145,9 +148,11 @@ void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, i
 
 TEST(AnchorTest, ConsistentOnRandomEdgesOfGeneratedLattices) {
   for (unsigned seed : {11u, 12u}) {
-    for (bool grid : {true, false}) {
+    for (int variant = 0; variant < 3; ++variant) {
+      const bool grid = variant < 2;
       auto map = test::randomMap(120, 90, 0.05, seed, 30, 180);
       LatticeConfig c;
+      c.anchor_turn_term = variant != 1;
       c.turning_radius = 0.3;
       c.allow_reverse = seed == 12;
       c.footprint = test::rectangle(0.12, 0.08);
@@ -170,9 +175,12 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
   c.mprim_file = data + "/sbpl/pr2.mprim";
   c.footprint = test::rectangle(0.01, 0.01);
   useSbplCostModel(env, c);
-  LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);
-  checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
-  checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);
+  for (bool turn_term : {false, true}) {
+    c.anchor_turn_term = turn_term;
+    LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);
+    checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
+    checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);
+  }
 }
 
 // Without its turning term the anchor stays consistent (forward and backward), no longer
@@ -187,6 +195,7 @@ TEST(AnchorTest, WithoutTurnTermConsistentAndHeadingFree) {
     c.time_to_turn_45 = 3.0;
     c.coarse_anchor = coarse;
     map->cost[45 * 120 + 60] = 0;
+    c.anchor_turn_term = true;
     LatticeFixture with = makeFixture(map, c);
     c.anchor_turn_term = false;
     LatticeFixture without = makeFixture(map, c);
@@ -258,25 +267,29 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
       }
     }
   }
-  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
-  LatticeProblem p(*f.graph, heur, goal, goal, 3);
-  int reachable = 0, tight = 0;
-  double ratio_sum = 0.0;
-  for (int y = 0; y < map->height; ++y)
-    for (int x = 0; x < map->width; ++x)
-      for (int h = 0; h < n; ++h) {
-        const HeuristicValue hv = p.anchor(x, y, h);
-        const Cost t = togo[index(x, y, h)];
-        if (t == kInfiniteCost) continue;
-        ++reachable;
-        ASSERT_NE(hv, kInfiniteHeuristic) << x << "," << y << "," << h;
-        ASSERT_LE(static_cast<Cost>(hv), t) << x << "," << y << "," << h;
-        tight += hv * 10 >= t * 7;
-        ratio_sum += static_cast<double>(hv) / std::max<Cost>(1, t);
-      }
-  std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable, tight, reachable);
-  EXPECT_GT(reachable, 1000);
-  EXPECT_GT(ratio_sum / reachable, 0.2);  // and it carries information
+  for (bool turn_term : {false, true}) {
+    c.anchor_turn_term = turn_term;
+    LatticeFixture ft = makeFixture(map, c);
+    auto heur = ft.builder->compute(goal.x, goal.y, goal.heading);
+    LatticeProblem p(*ft.graph, heur, goal, goal, 3);
+    int reachable = 0, tight = 0;
+    double ratio_sum = 0.0;
+    for (int y = 0; y < map->height; ++y)
+      for (int x = 0; x < map->width; ++x)
+        for (int h = 0; h < n; ++h) {
+          const HeuristicValue hv = p.anchor(x, y, h);
+          const Cost t = togo[index(x, y, h)];
+          if (t == kInfiniteCost) continue;
+          ++reachable;
+          ASSERT_NE(hv, kInfiniteHeuristic) << x << "," << y << "," << h;
+          ASSERT_LE(static_cast<Cost>(hv), t) << x << "," << y << "," << h;
+          tight += hv * 10 >= t * 7;
+          ratio_sum += static_cast<double>(hv) / std::max<Cost>(1, t);
+        }
+    std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable, tight, reachable);
+    EXPECT_GT(reachable, 1000);
+    EXPECT_GT(ratio_sum / reachable, 0.2);  // and it carries information
+  }
 }
 
 TEST(HeuristicGridTest, GoalsCachedAndGridsShared) {

@@ -25,11 +25,16 @@ class LatticeGraph;
 
 /// A grid move: from a cell to (dx, dy), allowed only if every required cell (the cells the
 /// straight segment between the two centres meets, both ends included) is passable; its cost
-/// uses the worst of those cells.
+/// uses the worst of those cells. Exception, `either_side`: a diagonal step's segment touches
+/// its two side cells only at their shared corner, so it needs its two ends and *one* passable
+/// side cell, and its cost uses the cheaper passable side. (Demanding both sides cost the
+/// anchor a quarter of its scale on pr2.mprim, whose 22.5-degree primitives pass exactly
+/// through cell corners.)
 struct GridMove {
   int dx = 0, dy = 0;
   double length = 0.0;  ///< cells
   std::vector<CellOffset> required;
+  bool either_side = false;  ///< required = the two ends + the two side cells, one of which suffices
 };
 
 /// The 8 neighbours (connectivity 8) or the 8 neighbours and the 8 knight moves (16).
@@ -105,6 +110,7 @@ class HeuristicGridBuilder {
     std::vector<std::int64_t> move_offsets;
     std::vector<std::int64_t> required;  // per move: kMaxRequired offsets (the two ends excluded)
     std::vector<int> required_count;
+    std::vector<char> either_side;       // per move: GridMove::either_side
     std::vector<std::uint32_t> step;     // per move, 256 cost classes
     std::uint32_t max_step = 0;
   };
