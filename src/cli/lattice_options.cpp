@@ -32,9 +32,10 @@ void LatticeOptions::addTo(CLI::App& app) {
                  "admissible anchor heuristic: euclidean (the paper's) | grid (+ an 8-connected grid "
                  "relaxation) | coarse (+ a block abstraction of the lattice; default)");
   app.add_option("--coarse-block", coarse_block, "cells per block side of the coarse anchor (default 0 = automatic)");
-  app.add_flag("--no-turn-term", no_turn_term,
-               "anchor without its turning term (cost of turning to the goal's heading): fewer expansions "
-               "on large maps where turns are cheap, more where they are expensive");
+  app.add_flag("--turn-term", turn_term,
+               "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
+               "many more expansions on large maps where turns are cheap");
+  app.add_flag("--no-turn-term", no_turn_term, "no turning term (the default; kept for old scripts)");
   app.add_flag("--backward", backward, "search from the goal back to the start (as SBPL does by default)");
 }
 
@@ -101,7 +102,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   c.grid_anchor = o.anchor != "euclidean";
   c.coarse_anchor = o.anchor == "coarse";
   c.coarse_block = o.coarse_block;
-  c.anchor_turn_term = !o.no_turn_term;
+  c.anchor_turn_term = o.turn_term && !o.no_turn_term;
   c.backward_search = o.backward;
   return out;
 }

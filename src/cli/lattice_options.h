@@ -30,7 +30,7 @@ struct LatticeOptions {
   std::string anchor = "coarse";
   int coarse_block = 0;
   bool backward = false;
-  bool no_turn_term = false;
+  bool turn_term = false, no_turn_term = false;
 
   void addTo(CLI::App& app);
 };
