@@ -87,12 +87,7 @@ class TilesSpace final : public TilesProblem {
     int tile[4];
     for (int k = 0; k < n; ++k) {
       if (k == from_k) continue;
-      const int p = neighbours_[b][k];
-      tile[k] = static_cast<int>(getField(parent, p));
-      // Field b holds 0 and field p holds t: XOR-ing t into both moves the tile.
-      std::memcpy(child[k], parent, sizeof(parent));
-      xorField(child[k], b, static_cast<std::uint64_t>(tile[k]));
-      xorField(child[k], p, static_cast<std::uint64_t>(tile[k]));
+      tile[k] = makeChild(parent, b, neighbours_[b][k], child[k]);
       hash[k] = hashWords(child[k]);
       __builtin_prefetch(&slots_[hash[k] & mask_]);
     }
@@ -135,12 +130,8 @@ class TilesSpace final : public TilesProblem {
     std::memcpy(parent, words(s), sizeof(parent));
     const int b = infoBlank(c.info[s & (kChunkStates - 1)]);
     for (int k = 0; k < num_neighbours_[b]; ++k) {
-      const int p = neighbours_[b][k];
-      const std::uint64_t t = getField(parent, p);
       std::uint64_t child[W];
-      std::memcpy(child, parent, sizeof(parent));
-      xorField(child, b, t);
-      xorField(child, p, t);
+      makeChild(parent, b, neighbours_[b][k], child);
       __builtin_prefetch(&slots_[hashWords(child) & mask_]);
     }
   }
@@ -227,6 +218,16 @@ class TilesSpace final : public TilesProblem {
   }
   void unpack(const std::uint64_t* w, std::uint8_t* tiles) const {
     for (int i = 0; i < n2_; ++i) tiles[i] = static_cast<std::uint8_t>(getField(w, i));
+  }
+
+  // The board made by moving the tile at p into the blank at b; returns that tile. Field b
+  // holds 0 and field p holds t: XOR-ing t into both moves the tile.
+  static int makeChild(const std::uint64_t* parent, int b, int p, std::uint64_t* child) {
+    const std::uint32_t t = getField(parent, p);
+    std::memcpy(child, parent, sizeof(std::uint64_t) * W);
+    xorField(child, b, t);
+    xorField(child, p, t);
+    return static_cast<int>(t);
   }
 
   static std::uint64_t hashWords(const std::uint64_t* w) {
