@@ -16,21 +16,23 @@ std::size_t MhaEngine::engineBytes() const {
   return bytes;
 }
 
+void MhaEngine::writeFreshRecords(std::size_t from, std::size_t to) {
+  // g = infinity, no parent, no flags, in no queue.
+  for (std::size_t s = from; s < to; ++s) {
+    std::memcpy(rec_.data() + s * stride_, fresh_.data(), stride_ * sizeof(std::uint32_t));
+  }
+}
+
 void MhaEngine::growArrays(std::size_t cap) {
-  // Append fresh records (g = infinity, no parent, no flags, in no queue).
-  const std::size_t old_size = rec_.size();
+  const std::size_t old_ids = rec_.size() / stride_;
   rec_.reserve(cap * stride_);  // exactly: resize() alone would double, past the memory cap
   rec_.resize(cap * stride_);
-  for (std::size_t w = old_size; w < rec_.size(); w += stride_) {
-    std::memcpy(rec_.data() + w, fresh_.data(), stride_ * sizeof(std::uint32_t));
-  }
+  writeFreshRecords(old_ids, cap);
 }
 
 void MhaEngine::resetArrays(std::size_t used) {
   for (auto& q : open_) q.clear();
-  for (std::size_t s = 0; s < used; ++s) {
-    std::copy(fresh_.begin(), fresh_.end(), rec_.begin() + static_cast<std::ptrdiff_t>(s * stride_));
-  }
+  writeFreshRecords(0, used);
   incons_.clear();
 }
 

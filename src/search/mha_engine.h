@@ -120,6 +120,7 @@ class MhaEngine : public SearchBase {
   StateId parentOf(StateId s) const override { return rec(s)[2]; }
   std::size_t engineBytes() const override;
   void growArrays(std::size_t cap) override;
+  void writeFreshRecords(std::size_t from, std::size_t to);  // states [from, to) become new
   void resetArrays(std::size_t used) override;
 
   MhaEngineOptions opt_;

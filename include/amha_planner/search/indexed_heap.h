@@ -1,7 +1,6 @@
 // Indexed binary min-heap over dense state ids: O(log n) insert / decrease / increase / remove,
 // O(1) membership, and a bulk rebuild (O(n) heapify) for re-keying between anytime iterations.
-// Each id's position in the heap is kept either in the heap's own array or, to save cache
-// misses, inside the caller's per-state records (bindPositions: a base pointer and a stride).
+// ANA* uses it: its keys change with every new incumbent. (A-MHA*'s queues are lazy_queue.h.)
 #pragma once
 
 #include <cstddef>
@@ -29,28 +28,14 @@ class IndexedHeap {
   /// Makes ids [0, n) addressable in the heap's own position array. Call as the state space
   /// grows (amortised, not per push).
   void reserveIds(std::size_t n) {
-    if (own_pos_.size() < n) own_pos_.resize(n, kAbsent);
-    base_ = own_pos_.data();
-    stride_ = 1;
-    ids_ = own_pos_.size();
+    if (pos_.size() < n) pos_.resize(n, kAbsent);
   }
-
-  /// Keeps positions in caller-owned memory instead: id's slot is base[id * stride], which must
-  /// be kAbsent for ids not in the heap. Call again whenever that memory moves or grows.
-  void bindPositions(std::uint32_t* base, std::size_t stride, std::size_t ids) {
-    base_ = base;
-    stride_ = stride;
-    ids_ = ids;
-  }
-  std::size_t idCapacity() const { return ids_; }
 
   bool empty() const { return heap_.empty(); }
   std::size_t size() const { return heap_.size(); }
-  bool contains(StateId id) const { return id < ids_ && pos(id) != kAbsent; }
+  bool contains(StateId id) const { return id < pos_.size() && pos_[id] != kAbsent; }
   const Entry& top() const { return heap_.front(); }
-  const Key& keyOf(StateId id) const { return heap_[pos(id)].key; }
   const std::vector<Entry>& entries() const { return heap_; }
-  Less& less() { return less_; }
 
   /// Inserts `id` or changes its key (up or down).
   void push(StateId id, const Key& key) {
@@ -98,12 +83,6 @@ class IndexedHeap {
     heap_.clear();
   }
 
-  /// Appends without restoring heap order; call rebuild() before the next top()/pop().
-  void appendUnordered(StateId id, const Key& key) {
-    pos(id) = static_cast<std::uint32_t>(heap_.size());
-    heap_.push_back(Entry{key, id});
-  }
-
   /// Sets every key to key_of(id) and restores heap order in O(n).
   template <typename KeyOf>
   void rekey(KeyOf&& key_of) {
@@ -111,7 +90,7 @@ class IndexedHeap {
     rebuild();
   }
 
-  /// Restores heap order (Floyd's heapify) after appendUnordered() or external key changes.
+  /// Restores heap order (Floyd's heapify) after removals or key changes made in bulk.
   void rebuild() {
     const std::size_t n = heap_.size();
     for (std::size_t i = 0; i < n; ++i) pos(heap_[i].id) = static_cast<std::uint32_t>(i);
@@ -119,7 +98,7 @@ class IndexedHeap {
   }
 
   std::size_t memoryBytes() const {
-    return heap_.capacity() * sizeof(Entry) + own_pos_.capacity() * sizeof(std::uint32_t);
+    return heap_.capacity() * sizeof(Entry) + pos_.capacity() * sizeof(std::uint32_t);
   }
 
  private:
@@ -152,14 +131,10 @@ class IndexedHeap {
     pos(e.id) = p;
   }
 
-  std::uint32_t& pos(StateId id) { return base_[static_cast<std::size_t>(id) * stride_]; }
-  std::uint32_t pos(StateId id) const { return base_[static_cast<std::size_t>(id) * stride_]; }
+  std::uint32_t& pos(StateId id) { return pos_[id]; }
 
   std::vector<Entry> heap_;
-  std::vector<std::uint32_t> own_pos_;
-  std::uint32_t* base_ = nullptr;
-  std::size_t stride_ = 1;
-  std::size_t ids_ = 0;
+  std::vector<std::uint32_t> pos_;  // heap position of each id, kAbsent if not in the heap
   Less less_;
 };
 
