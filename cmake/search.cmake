@@ -12,6 +12,7 @@ target_include_directories(amha_search PUBLIC
 amha_add_gtest(amha_search_tests
   SOURCES
     test/search/test_graphs.cpp
+    test/search/bucket_queue_test.cpp
     test/search/indexed_heap_test.cpp
     test/search/optimality_test.cpp
     test/search/limits_test.cpp

@@ -45,7 +45,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     member_words_ = (nh_ + 31) / 32;
     stride_ = kHeaderWords + nh_ + member_words_;
     stride_ += stride_ % 2;
-    open_.assign(nh_, LazyQueue());
+    open_.assign(nh_, OpenQueue());
     fresh_.assign(stride_, 0);
     const Cost inf = kInfiniteCost;
     std::memcpy(fresh_.data(), &inf, sizeof inf);
@@ -58,6 +58,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   hbuf_.resize(nh_);
   w1_ = opt_.w1;
   w2_ = opt_.w2;
+  small_keys_ = problem.smallIntegerKeys();
+  resetQueues();
   iteration_ = 0;
   round_robin_ = 0;
 
@@ -127,7 +129,7 @@ bool MhaEngine::improvePath() {
   for (;;) {
     if (stopped()) return false;  // e.g. a queue could not grow: OPEN is incomplete
     if (!cleanTop(0)) return true;
-    const double min0 = open_[0].top().f;
+    const double min0 = open_[0].topKey();
     // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min().
     if (static_cast<double>(g(goal)) <= w2_ * min0) return true;
     if (limitHit()) return false;
@@ -135,9 +137,9 @@ bool MhaEngine::improvePath() {
     if (n_inad > 0) {
       const std::size_t i = 1 + round_robin_;
       round_robin_ = (round_robin_ + 1) % n_inad;
-      if (cleanTop(i) && open_[i].top().f <= w2_ * min0) q = i;
+      if (cleanTop(i) && open_[i].topKey() <= w2_ * min0) q = i;
     }
-    const StateId s = open_[q].top().id;
+    const StateId s = open_[q].topId();
     problem_->prefetch(s);  // overlaps with the pop's walk down the heap
     open_[q].pop();
     // The next round tests the tops of OPEN_0 and of the next OPEN_i against their records:
@@ -196,43 +198,52 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
 }
 
 void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
-  // Lines 38-40: OPEN_0 := OPEN_0 u INCONS, re-keyed with the new w1. Members are found with
-  // the old weights (an entry is a member iff its key is the current one), then re-keyed.
+  // Lines 38-40: OPEN_0 := OPEN_0 u INCONS, re-keyed with the new w1. A state is in OPEN_0 iff
+  // its membership bit is set, and INCONS states are closed (in no queue), so one pass over the
+  // records in id order finds both; it streams through memory, where walking the queue's
+  // entries would visit the records in random order (seconds for millions of states).
   members_.clear();
-  for (const QueueEntry& e : open_[0]) {
-    if (isMember(0, e)) members_.push_back(e.id);
-  }
-  for (StateId s : incons_) {
-    flags(s) &= ~static_cast<std::uint32_t>(kIncons);
-    if (h(s, 0) != kInfiniteHeuristic) members_.push_back(s);  // closed: in no queue
+  const std::uint32_t incons = kIncons;
+  for (std::size_t i = 0; i < used_; ++i) {
+    const StateId s = static_cast<StateId>(i);
+    if (flags(s) & incons) {
+      flags(s) &= ~incons;
+      if (h(s, 0) != kInfiniteHeuristic) members_.push_back(s);
+    } else if (inOpen(s, 0)) {
+      members_.push_back(s);
+    }
   }
   incons_.clear();
   w1_ = next_w1;
   w2_ = next_w2;
   for (StateId s : members_) clearAllOpen(s);
-  open_[0].clear();
+  resetQueues();
   for (StateId s : members_) {
     open_[0].appendUnordered(key(s, 0));
     setInOpen(s, 0);
   }
-  open_[0].heapify();
+  open_[0].restoreOrder();
   // "Copy all states from OPEN_0 to OPEN_i": we re-apply Expand's admission test
   // (key_i <= w2 * key_0, h_i finite). The paper leaves this open. The bound proof only needs
   // line 19's test, so either choice is correct; filtering keeps OPEN_i identical to what
   // Expand would have built with the new weights (one invariant, checked by the tests), and
   // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
   for (std::size_t i = 1; i < nh_; ++i) {
-    open_[i].clear();
-    for (const QueueEntry& e0 : open_[0]) {  // exactly the members, with their new key_0
-      const QueueEntry ki = key(e0.id, i);
-      if (admits(ki, e0.f)) {
+    for (StateId s : members_) {  // exactly OPEN_0's entries, with their new key_0
+      const QueueEntry ki = key(s, i);
+      if (admits(ki, key(s, 0).f)) {
         open_[i].appendUnordered(ki);
-        setInOpen(e0.id, i);
+        setInOpen(s, i);
       }
     }
-    open_[i].heapify();
+    open_[i].restoreOrder();
   }
   clearClosed();
+}
+
+void MhaEngine::resetQueues() {
+  const double scale = small_keys_ ? OpenQueue::bucketScaleFor(w1_) : 0.0;
+  for (auto& q : open_) q.reset(scale);
 }
 
 void MhaEngine::clearClosed() {
@@ -247,15 +258,14 @@ Cost MhaEngine::lowerBound() const {
   // expanded with that g, so p is in OPEN_0 or INCONS and g(p) + h0(p) <= g*(goal) by
   // admissibility. Hence this minimum is a lower bound on the optimal cost (or the solution is
   // already optimal). States with h0 = infinity cannot lie on any path to the goal.
+  // One pass in id order over the records (see prepareNextIteration).
   Cost lb = kInfiniteCost;
-  auto consider = [&](StateId s) {
+  for (std::size_t i = 0; i < used_; ++i) {
+    const StateId s = static_cast<StateId>(i);
+    if (!(flags(s) & kIncons) && !inOpen(s, 0)) continue;
     const HeuristicValue h0 = h(s, 0);
     if (h0 != kInfiniteHeuristic) lb = std::min(lb, g(s) + static_cast<Cost>(h0));
-  };
-  for (const QueueEntry& e : open_[0]) {
-    if (isMember(0, e)) consider(e.id);
   }
-  for (StateId s : incons_) consider(s);
   return lb;
 }
 
@@ -263,18 +273,16 @@ void MhaEngine::checkInvariants() const {
   auto fail = [](const std::string& what) { throw std::logic_error("A-MHA* invariant: " + what); };
   for (std::size_t i = 0; i < nh_; ++i) {
     std::size_t members = 0;
-    for (const QueueEntry& e : open_[i]) {
-      if (!isMember(i, e)) continue;  // stale
+    open_[i].forEach([&](double f, StateId s) {
+      if (!isMember(i, f, s)) return;  // stale
       ++members;
-      const StateId s = e.id;
       if (flags(s) & kClosedAnch) fail("closed state in an OPEN queue");
-      if (e.h != h(s, i)) fail("entry of OPEN_" + std::to_string(i) + " has a wrong h");
       if (i > 0) {
         if (flags(s) & kClosedInad) fail("CLOSED_inad state in OPEN_" + std::to_string(i));
         if (!inOpen(s, 0)) fail("OPEN_i is not a subset of OPEN_0");
         if (!admits(key(s, i), key(s, 0).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
       }
-    }
+    });
     // Every state marked as a member has exactly one entry with its current key.
     std::size_t marked = 0;
     for (std::size_t s = 0; s < used_; ++s) marked += inOpen(static_cast<StateId>(s), i);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "big_array_allocator.h"
-#include "lazy_queue.h"
+#include "open_queue.h"
 #include "search_base.h"
 
 namespace amha {
@@ -42,6 +42,7 @@ class MhaEngine : public SearchBase {
   void expand(StateId s, std::size_t queue);
   void generate(StateId s);  // computes and caches the heuristics of a new state
   void prepareNextIteration(double next_w1, double next_w2);
+  void resetQueues();  // empties every queue and picks buckets or heaps for the current w1
   void clearClosed();
   Cost lowerBound() const;  // min over OPEN_0 and INCONS of g + h0
   void checkInvariants() const;
@@ -90,18 +91,20 @@ class MhaEngine : public SearchBase {
   }
   void prefetchTopRecord(std::size_t i) const {
     if (open_[i].empty()) return;
-    const std::uint32_t* r = rec(open_[i].top().id);
+    const std::uint32_t* r = rec(open_[i].topId());
     __builtin_prefetch(r);
     __builtin_prefetch(r + stride_ - 1);  // a record can straddle two cache lines
   }
-  bool isMember(std::size_t i, const QueueEntry& e) const {
-    return inOpen(e.id, i) && key(e.id, i).f == e.f;
+  /// An entry (key f, state id) of OPEN_i describes a member iff the state is marked as in
+  /// OPEN_i and f is its current key.
+  bool isMember(std::size_t i, double f, StateId id) const {
+    return inOpen(id, i) && key(id, i).f == f;
   }
   /// Drops stale entries from the top of OPEN_i; false if no member is left.
   bool cleanTop(std::size_t i) {
-    LazyQueue& q = open_[i];
+    OpenQueue& q = open_[i];
     while (!q.empty()) {
-      if (isMember(i, q.top())) return true;
+      if (isMember(i, q.topKey(), q.topId())) return true;
       q.pop();
     }
     return false;
@@ -109,8 +112,9 @@ class MhaEngine : public SearchBase {
   /// False if the queue would have to grow beyond the memory cap: the search then stops
   /// (kMemoryLimit) without reporting anything more, since OPEN_i is no longer complete.
   bool pushOpen(std::size_t i, const QueueEntry& e) {
-    LazyQueue& q = open_[i];
-    if (q.growthBytes() > 0 && !roomFor(q.growthBytes())) return !stopWith(SearchStatus::kMemoryLimit);
+    OpenQueue& q = open_[i];
+    const std::size_t growth = q.growthBytes(e);
+    if (growth > 0 && !roomFor(growth)) return !stopWith(SearchStatus::kMemoryLimit);
     q.push(e);
     setInOpen(e.id, i);
     return true;
@@ -128,6 +132,7 @@ class MhaEngine : public SearchBase {
   std::size_t member_words_ = 1;  // words of membership bits per record
   std::size_t stride_ = kHeaderWords + 2;
   double w1_ = 1.0, w2_ = 1.0;
+  bool small_keys_ = false;  // the problem allows bucket queues
   int iteration_ = 0;
   std::size_t round_robin_ = 0;
 
@@ -135,7 +140,7 @@ class MhaEngine : public SearchBase {
   std::vector<std::uint32_t> fresh_;  // one record as a new state has it
   std::vector<StateId> incons_;
   std::vector<StateId> members_;      // scratch for prepareNextIteration
-  std::vector<LazyQueue> open_;       // open_[0] is the anchor queue
+  std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
   std::vector<HeuristicValue> hbuf_;
   ExpansionObserver observer_;
 };

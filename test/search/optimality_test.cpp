@@ -30,6 +30,11 @@ std::vector<Case> makeCases(std::size_t n_inadmissible) {
     o.anchor_scale = (seed % 3 == 0) ? 0.0 : (seed % 3 == 1 ? 0.6 : 1.0);
     cases.push_back({"grid" + std::to_string(seed), testing::randomGrid(24, 18, 0.25, o)});
     cases.push_back({"graph" + std::to_string(seed), testing::randomGraph(300, 3, o)});
+    // Half of the cases let the engine keep its queues as buckets, half as heaps.
+    for (std::size_t k = cases.size() - 2; k < cases.size(); ++k) {
+      cases[k].graph.small_keys = (seed + k) % 2 == 0;
+      cases[k].name += cases[k].graph.small_keys ? "-buckets" : "-heaps";
+    }
   }
   return cases;
 }

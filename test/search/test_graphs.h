@@ -19,6 +19,7 @@ class ExplicitGraph : public SearchProblem {
   StateId s_start = 0, s_goal = 0;
   std::size_t n_heuristics = 1;
   std::uint64_t successor_calls = 0;
+  bool small_keys = false;  // let the search use bucket queues (costs and h are integers)
 
   StateId start() const override { return s_start; }
   StateId goal() const override { return s_goal; }
@@ -30,6 +31,7 @@ class ExplicitGraph : public SearchProblem {
   void heuristics(StateId s, HeuristicValue* out, std::size_t count) override {
     for (std::size_t i = 0; i < count; ++i) out[i] = h[s][i];
   }
+  bool smallIntegerKeys() const override { return small_keys; }
   std::size_t size() const { return adj.size(); }
 };
 

@@ -35,6 +35,11 @@ class SearchProblem {
   /// Writes h_0(s) .. h_{count-1}(s) into `h` (count <= numHeuristics()). h_0(goal) must be 0.
   virtual void heuristics(StateId s, HeuristicValue* h, std::size_t count) = 0;
 
+  /// True if edge costs and heuristic values are small integers, so that every key
+  /// g + w * h stays below a few million: the search may then keep its queues as arrays of
+  /// buckets indexed by key instead of heaps.
+  virtual bool smallIntegerKeys() const { return false; }
+
   /// Bytes the domain holds for its states (hash tables, state storage); counted against the
   /// search's memory cap together with the search's own arrays.
   virtual std::size_t memoryBytes() const { return 0; }

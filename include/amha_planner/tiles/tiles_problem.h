@@ -34,6 +34,8 @@ class TilesProblem : public SearchProblem {
   int size() const { return size_; }
   const std::vector<TermWeights>& weights() const { return weights_; }
   std::size_t numHeuristics() const override { return 1 + weights_.size(); }
+  /// Unit moves and heuristics below a few thousand: the search may use bucket queues.
+  bool smallIntegerKeys() const override { return true; }
 
   /// The board of a discovered state.
   virtual Board board(StateId s) const = 0;
