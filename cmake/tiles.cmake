@@ -20,6 +20,9 @@ amha_add_gtest(amha_tiles_tests
 target_sources(amha PRIVATE src/cli/tiles_command.cpp src/cli/tiles_report.cpp
                             src/cli/tiles_report_command.cpp)
 target_link_libraries(amha PRIVATE amha_tiles)
+amha_add_gtest(amha_tiles_report_tests
+  SOURCES test/tiles/tiles_report_test.cpp src/cli/tiles_report.cpp
+  LIBS amha_cli_support)
 
 # `amha tiles` end to end (exit codes, JSON, instance files).
 add_test(NAME amha_tiles_cli

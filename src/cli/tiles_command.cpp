@@ -297,6 +297,7 @@ int runTiles(int argc, char** argv) {
         s.path.clear();
         s.path.shrink_to_fit();
       }
+      dropLateSolutions(run, o.time_limit, cpu_clock);
       if (!o.quiet) {
         const SearchResult& r = run.result;
         std::lock_guard<std::mutex> lock(io);
@@ -337,6 +338,7 @@ int runTiles(int argc, char** argv) {
         nlohmann::json j = runToJson(r.instance, r.algorithm, r.result,
                                      r.optimal ? std::optional<Cost>(*r.optimal) : std::nullopt);
         j["cpu_s"] = r.cpu_s;  // beyond the shared schema: CPU time of the searching thread
+        j["solutions_after_limit"] = r.late_solutions;  // dropped: see dropLateSolutions
         for (std::size_t k = 0; k < r.solution_cpu_s.size() && k < j["solutions"].size(); ++k) {
           j["solutions"][k]["cpu_s"] = r.solution_cpu_s[k];
         }

@@ -284,13 +284,35 @@ std::string legend(bool cpu_clock) {
 
 }  // namespace
 
+void dropLateSolutions(TilesRun& run, double time_limit, bool cpu_clock) {
+  std::size_t keep = 0;
+  while (keep < run.result.solutions.size() && run.solutionTime(keep, cpu_clock) <= time_limit) ++keep;
+  run.late_solutions += static_cast<int>(run.result.solutions.size() - keep);
+  run.result.solutions.resize(keep);
+  if (run.solution_cpu_s.size() > keep) run.solution_cpu_s.resize(keep);
+}
+
+namespace {
+std::string lateNote(const std::vector<TilesRun>& runs) {
+  int late = 0, late_runs = 0;
+  for (const TilesRun& r : runs) {
+    late += r.late_solutions;
+    late_runs += r.late_solutions > 0;
+  }
+  if (late == 0) return "";
+  return std::to_string(late) + " solution(s) of " + std::to_string(late_runs) +
+         " run(s) came after the time limit (a step that does not check the clock, such as "
+         "growing a table, was finishing) and are not counted.\n";
+}
+}  // namespace
+
 std::string reportText(const std::vector<TilesRun>& runs, const std::vector<Algorithm>& algorithms,
                        bool cpu_clock) {
   const auto summary = summarize(runs, algorithms, cpu_clock);
   std::size_t n_common = 0, n_inst = 0;
   const auto common = summarizeCommon(runs, algorithms, cpu_clock, &n_common, &n_inst);
   std::ostringstream out;
-  out << formatTable(summary) << legend(cpu_clock) << "\n";
+  out << formatTable(summary) << legend(cpu_clock) << "\n" << lateNote(runs);
   if (algorithms.size() > 1) {
     out << "\non the " << n_common << " of " << n_inst << " instances every algorithm solved:\n";
     if (n_common > 0) out << textTable({std::begin(kCommonHeader), std::end(kCommonHeader)}, commonRows(common));
@@ -306,6 +328,8 @@ std::string reportMarkdown(const std::vector<TilesRun>& runs,
   const auto common = summarizeCommon(runs, algorithms, cpu_clock, &n_common, &n_inst);
   std::ostringstream out;
   out << formatMarkdownTable(summary) << "\n" << legend(cpu_clock) << "\n";
+  const std::string late = lateNote(runs);
+  if (!late.empty()) out << "\n" << late;
   if (algorithms.size() > 1) {
     out << "\nOn the " << n_common << " of " << n_inst << " instances every algorithm solved:\n\n";
     if (n_common > 0) {

@@ -20,12 +20,19 @@ struct TilesRun {
   SearchResult result;  // solution paths may have been dropped after verification
   double cpu_s = 0;     // CPU time of the searching thread (wall time is result.elapsed_s)
   std::vector<double> solution_cpu_s;  // the same clock at each solution
+  int late_solutions = 0;  // solutions reported after the time limit, dropped (see below)
 
   /// Time of solution k on the chosen clock.
   double solutionTime(std::size_t k, bool cpu_clock) const {
     return cpu_clock ? solution_cpu_s.at(k) : result.solutions.at(k).elapsed_s;
   }
 };
+
+/// Drops the solutions reported after `time_limit` (on the chosen clock) and counts them in
+/// `late_solutions`. A search checks the clock between expansions but not inside a step such
+/// as growing a table of millions of states, so under load it can finish a solution after its
+/// limit; such a run did not solve the instance within the limit.
+void dropLateSolutions(TilesRun& run, double time_limit, bool cpu_clock);
 
 /// Means are over the runs that found a solution ("solved"); speed and memory over all runs.
 /// Times (T_initial, T_final, the plot's axis) are on the CPU clock of the searching thread if

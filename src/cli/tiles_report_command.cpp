@@ -50,6 +50,7 @@ TilesRun runFromJson(const nlohmann::json& j) {
   r.result.peak_memory_bytes = j.at("peak_memory_bytes").get<std::size_t>();
   r.result.elapsed_s = j.at("elapsed_s").get<double>();
   r.cpu_s = numberOr(j, "cpu_s", 0.0);
+  r.late_solutions = j.value("solutions_after_limit", 0);
   for (const auto& js : j.at("solutions")) {
     Solution s;
     s.cost = js.at("cost").get<Cost>();
@@ -95,6 +96,7 @@ int runTilesReport(int argc, char** argv) {
     n_instances = doc.at("instances").size();
     for (const auto& j : doc.at("runs")) {
       runs.push_back(runFromJson(j));
+      dropLateSolutions(runs.back(), time_limit, cpu_clock);  // files written before the rule
       if (std::find(algorithms.begin(), algorithms.end(), runs.back().algorithm) == algorithms.end()) {
         algorithms.push_back(runs.back().algorithm);
       }
