@@ -1,17 +1,16 @@
-// The A-MHA* engine's queue for domains with small integer keys (the sliding tiles): one
-// bucket per key value, each a LIFO stack of state ids in 64-byte blocks from a shared pool.
-// Push and pop are O(1) (plus the walk to the next non-empty bucket) and touch one or two cache
-// lines, where a heap of millions of entries walks a dozen levels per pop. An entry is a 4-byte
-// id: its key is its bucket's. Like LazyQueue, entries are never changed in place; the engine
-// skips stale ones.
+// The A-MHA* engine's queue for domains with small integer keys (the sliding tiles): nested
+// buckets, one per key value f and, inside it, one per heuristic value h, so that pops come in
+// (f, h) order like the heap's (smaller h first: the deeper state among equal f), newest first
+// among equal (f, h). Each (f, h) bucket is a stack of 4-byte state ids in 64-byte blocks from a
+// shared pool. Push and pop touch a few cache lines, where a heap of millions of entries walks a
+// dozen levels per pop. Like LazyQueue, entries are never changed in place; the engine skips
+// stale ones.
 //
 // Keys are f * scale for a scale that makes them integers (f = g + w1 * h with integer g and h,
-// so any w1 that is a multiple of 1 / scale). Ties in f go to the newest entry: in a domain
-// with unit costs that is usually the deepest state, as the heap's smaller-h rule prefers.
+// so any w1 that is a multiple of 1 / scale).
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -31,45 +30,55 @@ class BucketQueue {
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
 
-  /// The newest entry of the lowest non-empty bucket: its key and id.
+  /// The newest entry of the lowest non-empty (f, h) bucket: its key and id.
   double topKey() const { return static_cast<double>(min_) / scale_; }
   StateId topId() const {
-    const Block& b = blocks_[heads_[min_]];
+    const FBucket& fb = f_[min_];
+    const Block& b = blocks_[fb.heads[fb.min_h - fb.base]];
     return b.ids[b.count - 1];
   }
 
-  void push(double f, StateId id) {
+  void push(double f, HeuristicValue h, StateId id) {
     const std::size_t k = bucketOf(f);
-    if (k >= heads_.size()) heads_.resize(std::max(k + 1, 2 * heads_.size()), kNone);
-    std::uint32_t h = heads_[k];
-    if (h == kNone || blocks_[h].count == kIds) {
+    if (k >= f_.size()) f_.resize(std::max(k + 1, 2 * f_.size()));
+    FBucket& fb = f_[k];
+    const std::size_t before = fb.heads.capacity();
+    std::uint32_t& head = fb.slot(h);
+    stack_heads_ += fb.heads.capacity() - before;
+    if (head == kNone || blocks_[head].count == kIds) {
       const std::uint32_t nb = newBlock();
-      blocks_[nb].next = h;
-      heads_[k] = h = nb;
+      blocks_[nb].next = head;
+      head = nb;
     }
-    Block& b = blocks_[h];
+    Block& b = blocks_[head];
     b.ids[b.count++] = id;
+    if (fb.count++ == 0 || h < fb.min_h) fb.min_h = h;
     ++size_;
     if (k < min_) min_ = k;
   }
 
   void pop() {
-    const std::uint32_t h = heads_[min_];
-    Block& b = blocks_[h];
+    FBucket& fb = f_[min_];
+    std::uint32_t& head = fb.heads[fb.min_h - fb.base];
+    Block& b = blocks_[head];
     if (--b.count == 0) {
-      heads_[min_] = b.next;
+      const std::uint32_t freed = head;
+      head = b.next;
       b.next = free_;
-      free_ = h;
+      free_ = freed;
     }
-    if (--size_ == 0) {
+    --size_;
+    if (--fb.count > 0) {
+      while (fb.heads[fb.min_h - fb.base] == kNone) ++fb.min_h;  // a stack above is non-empty
+    } else if (size_ == 0) {
       min_ = kEmptyMin;
-      return;
+    } else {
+      while (f_[min_].count == 0) ++min_;  // some bucket above holds an entry
     }
-    while (heads_[min_] == kNone) ++min_;  // some bucket above holds an entry
   }
 
   void clear() {
-    heads_.assign(heads_.size(), kNone);
+    for (FBucket& fb : f_) fb.reset();
     blocks_.clear();
     free_ = kNone;
     size_ = 0;
@@ -79,24 +88,44 @@ class BucketQueue {
   /// Calls fn(f, id) for every entry (members and stale ones).
   template <typename F>
   void forEach(F&& fn) const {
-    for (std::size_t k = 0; k < heads_.size(); ++k) {
-      for (std::uint32_t h = heads_[k]; h != kNone; h = blocks_[h].next) {
-        const Block& b = blocks_[h];
-        for (std::uint32_t j = 0; j < b.count; ++j) fn(static_cast<double>(k) / scale_, b.ids[j]);
+    for (std::size_t k = 0; k < f_.size(); ++k) {
+      if (f_[k].count == 0) continue;
+      for (std::uint32_t head : f_[k].heads) {
+        for (std::uint32_t bi = head; bi != kNone; bi = blocks_[bi].next) {
+          const Block& b = blocks_[bi];
+          for (std::uint32_t j = 0; j < b.count; ++j) fn(static_cast<double>(k) / scale_, b.ids[j]);
+        }
       }
     }
   }
 
   std::size_t memoryBytes() const {
-    return blocks_.capacity() * sizeof(Block) + heads_.capacity() * sizeof(std::uint32_t);
+    return blocks_.capacity() * sizeof(Block) + f_.capacity() * sizeof(FBucket) +
+           stack_heads_ * sizeof(std::uint32_t);
   }
-  /// Bytes push(f, ...) may allocate (0 unless the pool or the bucket array must grow).
-  std::size_t growthBytes(double f) const {
-    std::size_t bytes = 0;
+  /// Bytes push(f, h, ...) may allocate (0 unless the pool or a bucket array must grow).
+  std::size_t growthBytes(double f, HeuristicValue h) const {
     const std::size_t k = bucketOf(f);
-    if (k >= heads_.size()) bytes += std::max(k + 1, 2 * heads_.size()) * sizeof(std::uint32_t);
-    const bool needs_block = k >= heads_.size() || heads_[k] == kNone ||
-                             blocks_[heads_[k]].count == kIds;
+    if (k < f_.size()) {  // the common case first: a stack with room in its newest block
+      const FBucket& fb = f_[k];
+      if (fb.count > 0 && h >= fb.base && h - fb.base < fb.heads.size()) {
+        const std::uint32_t head = fb.heads[h - fb.base];
+        if (head != kNone && blocks_[head].count < kIds) return 0;
+      }
+    }
+    std::size_t bytes = 0;
+    bool needs_block = true;
+    if (k >= f_.size()) {
+      bytes += std::max(k + 1, 2 * f_.size()) * sizeof(FBucket) + sizeof(std::uint32_t);
+    } else {
+      const FBucket& fb = f_[k];
+      const std::size_t span = fb.spanWith(h);
+      if (span > fb.heads.capacity()) bytes += 2 * span * sizeof(std::uint32_t);
+      if (fb.count > 0 && h >= fb.base && h - fb.base < fb.heads.size()) {
+        const std::uint32_t head = fb.heads[h - fb.base];
+        needs_block = head == kNone || blocks_[head].count == kIds;
+      }
+    }
     if (needs_block && free_ == kNone && blocks_.size() == blocks_.capacity()) {
       bytes += std::max<std::size_t>(blocks_.capacity(), 1) * sizeof(Block);
     }
@@ -108,13 +137,48 @@ class BucketQueue {
   static constexpr std::size_t kEmptyMin = static_cast<std::size_t>(-1);
   static constexpr std::uint32_t kIds = 14;
   struct Block {
-    std::uint32_t next;   // the block below it in its bucket, or kNone
+    std::uint32_t next;   // the block below it in its stack, or kNone
     std::uint32_t count;  // ids in use; the newest is ids[count - 1]
     std::uint32_t ids[kIds];
   };
   static_assert(sizeof(Block) == 64, "one block per cache line");
 
-  std::size_t bucketOf(double f) const { return static_cast<std::size_t>(std::llround(f * scale_)); }
+  // The entries of one key value: a stack per h in [base, base + heads.size()). The array
+  // keeps its capacity when the bucket empties, so a warmed-up search allocates nothing.
+  struct FBucket {
+    std::vector<std::uint32_t> heads;  // per h - base: its newest block, or kNone
+    HeuristicValue base = 0;
+    HeuristicValue min_h = 0;          // lowest non-empty stack while count > 0
+    std::size_t count = 0;             // entries in the bucket
+
+    void reset() {
+      std::fill(heads.begin(), heads.end(), kNone);
+      count = 0;
+    }
+    // The number of stacks the array must span to hold h as well.
+    std::size_t spanWith(HeuristicValue h) const {
+      if (count == 0 || heads.empty()) return 1;
+      if (h < base) return heads.size() + (base - h);
+      return std::max<std::size_t>(heads.size(), h - base + 1);
+    }
+    std::uint32_t& slot(HeuristicValue h) {
+      if (count == 0) {
+        // Empty: every stack is kNone, so the array can be re-based at h for free.
+        if (heads.empty()) heads.push_back(kNone);
+        base = h;
+      } else if (h < base) {
+        heads.insert(heads.begin(), base - h, kNone);
+        base = h;
+      } else if (h - base >= heads.size()) {
+        heads.resize(h - base + 1, kNone);
+      }
+      return heads[h - base];
+    }
+  };
+
+  // f * scale is a whole number (up to rounding in the product), so adding 0.5 and truncating
+  // rounds it; std::llround is a library call.
+  std::size_t bucketOf(double f) const { return static_cast<std::size_t>(f * scale_ + 0.5); }
 
   std::uint32_t newBlock() {
     std::uint32_t b = free_;
@@ -129,11 +193,12 @@ class BucketQueue {
   }
 
   double scale_;
-  std::vector<std::uint32_t> heads_;  // per key: its newest block, or kNone
+  std::vector<FBucket> f_;  // per key f * scale
   std::vector<Block, BigArrayAllocator<Block>> blocks_;
-  std::uint32_t free_ = kNone;        // free blocks, linked through next
+  std::uint32_t free_ = kNone;  // free blocks, linked through next
   std::size_t size_ = 0;
-  std::size_t min_ = kEmptyMin;       // lowest non-empty bucket while size_ > 0
+  std::size_t min_ = kEmptyMin;  // lowest non-empty key bucket while size_ > 0
+  std::size_t stack_heads_ = 0;  // capacity of all FBucket::heads arrays together
 };
 
 }  // namespace detail

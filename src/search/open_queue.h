@@ -38,12 +38,12 @@ class OpenQueue {
   double topKey() const { return use_buckets_ ? buckets_.topKey() : heap_.top().f; }
   StateId topId() const { return use_buckets_ ? buckets_.topId() : heap_.top().id; }
 
-  void push(const QueueEntry& e) { use_buckets_ ? buckets_.push(e.f, e.id) : heap_.push(e); }
+  void push(const QueueEntry& e) { use_buckets_ ? buckets_.push(e.f, e.h, e.id) : heap_.push(e); }
   void pop() { use_buckets_ ? buckets_.pop() : heap_.pop(); }
 
   /// Adds without ordering; call restoreOrder() before the next top or pop.
   void appendUnordered(const QueueEntry& e) {
-    use_buckets_ ? buckets_.push(e.f, e.id) : heap_.appendUnordered(e);
+    use_buckets_ ? buckets_.push(e.f, e.h, e.id) : heap_.appendUnordered(e);
   }
   void restoreOrder() {
     if (!use_buckets_) heap_.heapify();
@@ -62,7 +62,7 @@ class OpenQueue {
   std::size_t memoryBytes() const { return heap_.memoryBytes() + buckets_.memoryBytes(); }
   /// Bytes push(e) may allocate.
   std::size_t growthBytes(const QueueEntry& e) const {
-    return use_buckets_ ? buckets_.growthBytes(e.f) : heap_.growthBytes();
+    return use_buckets_ ? buckets_.growthBytes(e.f, e.h) : heap_.growthBytes();
   }
 
  private:

@@ -1,11 +1,11 @@
-// The bucket queue against a reference (a sorted list): pops come in key order, newest first
-// among equal keys, also when keys are pushed below the current minimum or the queue is
-// emptied and refilled; the memory it reports covers what it holds.
+// The bucket queue against a reference (a sorted list): pops come in (key, h) order, newest
+// first among equal ones, also when keys or h values are pushed below the current minimum or
+// the queue is emptied and refilled; the memory it reports covers what it holds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
-#include <utility>
+#include <tuple>
 #include <vector>
 
 #include "../../src/search/bucket_queue.h"
@@ -15,44 +15,50 @@ namespace amha {
 namespace detail {
 namespace {
 
-TEST(BucketQueue, PopsInKeyOrderNewestFirst) {
+TEST(BucketQueue, PopsInKeyThenHOrderNewestFirst) {
   BucketQueue q(2.0);  // keys in steps of 0.5
-  q.push(3.0, 1);
-  q.push(1.5, 2);
-  q.push(3.0, 3);
-  q.push(1.5, 4);
-  q.push(0.0, 5);
-  ASSERT_EQ(q.size(), 5u);
+  q.push(3.0, 2, 1);
+  q.push(1.5, 1, 2);
+  q.push(3.0, 1, 3);
+  q.push(1.5, 1, 4);
+  q.push(0.0, 0, 5);
+  q.push(3.0, 2, 6);
+  ASSERT_EQ(q.size(), 6u);
   std::vector<std::pair<double, StateId>> popped;
   while (!q.empty()) {
     popped.emplace_back(q.topKey(), q.topId());
     q.pop();
   }
   const std::vector<std::pair<double, StateId>> expected = {
-      {0.0, 5}, {1.5, 4}, {1.5, 2}, {3.0, 3}, {3.0, 1}};
+      {0.0, 5}, {1.5, 4}, {1.5, 2}, {3.0, 3}, {3.0, 6}, {3.0, 1}};
   EXPECT_EQ(popped, expected);
 }
 
 TEST(BucketQueue, MatchesSortedReferenceUnderRandomPushesAndPops) {
   std::mt19937 rng(7);
   BucketQueue q(4.0);
-  // Reference: (key, push order); the queue must pop the smallest key, latest push first.
-  std::vector<std::pair<double, long>> ref;
+  // Reference entries (key, h, push order); the queue must pop the smallest key, then the
+  // smallest h, then the latest push.
+  std::vector<std::tuple<double, HeuristicValue, long>> ref;
+  auto before = [](const auto& a, const auto& b) {
+    if (std::get<0>(a) != std::get<0>(b)) return std::get<0>(a) < std::get<0>(b);
+    if (std::get<1>(a) != std::get<1>(b)) return std::get<1>(a) < std::get<1>(b);
+    return std::get<2>(a) > std::get<2>(b);
+  };
   long order = 0;
   for (int step = 0; step < 40000; ++step) {
     if (ref.empty() || rng() % 100 < 55) {
-      // Keys rise over time but often drop below the current minimum, as in a search.
+      // Keys rise over time but often drop below the current minimum, as in a search; h
+      // values spread within a key so that stacks are added below and above existing ones.
       const double base = step / 10;
       const double f = std::max(0.0, base + static_cast<double>(rng() % 400) / 4.0 - 50.0);
-      const auto id = static_cast<StateId>(order);
-      q.push(f, id);
-      ref.emplace_back(f, order++);
+      const auto h = static_cast<HeuristicValue>(rng() % 40);
+      q.push(f, h, static_cast<StateId>(order));
+      ref.emplace_back(f, h, order++);
     } else {
-      auto best = std::min_element(ref.begin(), ref.end(), [](const auto& a, const auto& b) {
-        return a.first < b.first || (a.first == b.first && a.second > b.second);
-      });
-      ASSERT_EQ(q.topKey(), best->first) << "step " << step;
-      ASSERT_EQ(q.topId(), static_cast<StateId>(best->second)) << "step " << step;
+      auto best = std::min_element(ref.begin(), ref.end(), before);
+      ASSERT_EQ(q.topKey(), std::get<0>(*best)) << "step " << step;
+      ASSERT_EQ(q.topId(), static_cast<StateId>(std::get<2>(*best))) << "step " << step;
       q.pop();
       ref.erase(best);
     }
@@ -70,11 +76,12 @@ TEST(BucketQueue, MatchesSortedReferenceUnderRandomPushesAndPops) {
 
 TEST(BucketQueue, ReportsTheMemoryItsNextPushNeeds) {
   BucketQueue q(1.0);
-  EXPECT_GT(q.growthBytes(10.0), 0u);  // nothing allocated yet
-  q.push(10.0, 1);
+  EXPECT_GT(q.growthBytes(10.0, 3), 0u);  // nothing allocated yet
+  q.push(10.0, 3, 1);
   EXPECT_GE(q.memoryBytes(), 64u + 11 * sizeof(std::uint32_t));
-  EXPECT_EQ(q.growthBytes(10.0), 0u);   // room left in the bucket's block
-  EXPECT_GT(q.growthBytes(1000.0), 0u);  // the bucket array must grow
+  EXPECT_EQ(q.growthBytes(10.0, 3), 0u);     // room left in the stack's block
+  EXPECT_GT(q.growthBytes(1000.0, 3), 0u);   // the key array must grow
+  EXPECT_GT(q.growthBytes(10.0, 500), 0u);   // the key's stack array must grow
 }
 
 TEST(OpenQueue, PicksBucketsOnlyForKeysThatScaleToIntegers) {
@@ -87,13 +94,14 @@ TEST(OpenQueue, PicksBucketsOnlyForKeysThatScaleToIntegers) {
   EXPECT_TRUE(q.usesBuckets());
   q.push(QueueEntry{2.5, 7, 3});
   q.push(QueueEntry{1.0, 9, 4});
+  q.push(QueueEntry{1.0, 8, 5});
   EXPECT_EQ(q.topKey(), 1.0);
-  EXPECT_EQ(q.topId(), 4u);
+  EXPECT_EQ(q.topId(), 5u);  // equal keys: the smaller h, as in the heap
   q.reset(0.0);
   EXPECT_FALSE(q.usesBuckets());
   EXPECT_TRUE(q.empty());
   q.push(QueueEntry{2.3, 1, 5});
-  q.push(QueueEntry{2.3, 0, 6});  // equal keys: the heap prefers the smaller h
+  q.push(QueueEntry{2.3, 0, 6});
   EXPECT_EQ(q.topId(), 6u);
 }
 
