@@ -40,6 +40,11 @@ target_sources(amha PRIVATE
 )
 target_link_libraries(amha PRIVATE amha_lattice)
 
+# Contradicting flags are refused with a usage error (exit code 2), not silently resolved.
+add_test(NAME amha_plan_refuses_both_turn_flags
+         COMMAND bash -c "out=$(\"$0\" plan --map x.pgm --start 0,0,0 --goal 1,1,0 --turn-term --no-turn-term 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 2 ] && grep -q excludes <<<\"$out\""
+                 $<TARGET_FILE:amha>)
+
 amha_add_gtest(amha_lattice_tests
   SOURCES
     test/lattice/test_support.cpp

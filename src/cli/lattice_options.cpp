@@ -32,10 +32,13 @@ void LatticeOptions::addTo(CLI::App& app) {
                  "admissible anchor heuristic: euclidean (the paper's) | grid (+ an 8-connected grid "
                  "relaxation) | coarse (+ a block abstraction of the lattice; default)");
   app.add_option("--coarse-block", coarse_block, "cells per block side of the coarse anchor (default 0 = automatic)");
-  app.add_flag("--turn-term", turn_term,
-               "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
-               "many more expansions on large maps where turns are cheap");
-  app.add_flag("--no-turn-term", no_turn_term, "no turning term (the default; kept for old scripts)");
+  auto* with_turn = app.add_flag(
+      "--turn-term", turn_term,
+      "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
+      "many more expansions on large maps where turns are cheap");
+  // Both together would silently mean one of them: refuse the pair.
+  app.add_flag("--no-turn-term", no_turn_term, "no turning term (the default; kept for old scripts)")
+      ->excludes(with_turn);
   app.add_flag("--backward", backward, "search from the goal back to the start (as SBPL does by default)");
 }
 

@@ -1,7 +1,7 @@
 // Fuzzes the search core: a graph, costs and arbitrary inadmissible heuristics (including
 // infinite ones) from the input bytes; every algorithm's every solution must be a valid path
 // within its certified bound of the Dijkstra optimum, solution costs must never increase, and
-// unsolvable inputs must end cleanly.
+// unsolvable inputs must end cleanly. Both kinds of queue (buckets, heaps) are exercised.
 // (It found ANA* reporting a costlier path after a cheaper one; fixed in SearchBase::report,
 // see test/search/monotone_cost_test.cpp.)
 #include <cmath>
@@ -39,6 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   g.h[g.s_goal][0] = 0;
+  g.small_keys = (in.u8() & 1) != 0;  // the engine's queues as buckets or as heaps
   const Cost optimal = d[g.s_start];
   for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
                       Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar}) {
