@@ -26,6 +26,12 @@ class BucketQueue {
   /// Keys f become buckets f * scale; every pushed f must make that an integer >= 0.
   explicit BucketQueue(double scale = 1.0) : scale_(scale) { clear(); }
 
+  /// Empties the queue for keys of another scale; its memory stays for reuse.
+  void reset(double scale) {
+    scale_ = scale;
+    clear();
+  }
+
   double scale() const { return scale_; }
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
@@ -106,27 +112,21 @@ class BucketQueue {
   /// Bytes push(f, h, ...) may allocate (0 unless the pool or a bucket array must grow).
   std::size_t growthBytes(double f, HeuristicValue h) const {
     const std::size_t k = bucketOf(f);
-    if (k < f_.size()) {  // the common case first: a stack with room in its newest block
-      const FBucket& fb = f_[k];
-      if (fb.count > 0 && h >= fb.base && h - fb.base < fb.heads.size()) {
-        const std::uint32_t head = fb.heads[h - fb.base];
-        if (head != kNone && blocks_[head].count < kIds) return 0;
-      }
-    }
     std::size_t bytes = 0;
-    bool needs_block = true;
     if (k >= f_.size()) {
       bytes += std::max(k + 1, 2 * f_.size()) * sizeof(FBucket) + sizeof(std::uint32_t);
     } else {
       const FBucket& fb = f_[k];
-      const std::size_t span = fb.spanWith(h);
-      if (span > fb.heads.capacity()) bytes += 2 * span * sizeof(std::uint32_t);
       if (fb.count > 0 && h >= fb.base && h - fb.base < fb.heads.size()) {
+        // The common case: the stack exists; nothing to allocate if its newest block has room.
         const std::uint32_t head = fb.heads[h - fb.base];
-        needs_block = head == kNone || blocks_[head].count == kIds;
+        if (head != kNone && blocks_[head].count < kIds) return 0;
+      } else if (fb.spanWith(h) > fb.heads.capacity()) {
+        bytes += 2 * fb.spanWith(h) * sizeof(std::uint32_t);
       }
     }
-    if (needs_block && free_ == kNone && blocks_.size() == blocks_.capacity()) {
+    // Past this point the push takes a new block.
+    if (free_ == kNone && blocks_.size() == blocks_.capacity()) {
       bytes += std::max<std::size_t>(blocks_.capacity(), 1) * sizeof(Block);
     }
     return bytes;

@@ -11,7 +11,7 @@ namespace detail {
 
 std::size_t MhaEngine::engineBytes() const {
   std::size_t bytes = rec_.capacity() * sizeof(std::uint32_t) +
-                      (incons_.capacity() + members_.capacity()) * sizeof(StateId);
+                      members_.capacity() * sizeof(StateId);
   for (const auto& q : open_) bytes += q.memoryBytes();
   return bytes;
 }
@@ -33,7 +33,6 @@ void MhaEngine::growArrays(std::size_t cap) {
 void MhaEngine::resetArrays(std::size_t used) {
   for (auto& q : open_) q.clear();
   writeFreshRecords(0, used);
-  incons_.clear();
 }
 
 SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
@@ -174,10 +173,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     rec(t)[2] = s;
     const std::uint32_t f = flags(t);
     if (f & kClosedAnch) {
-      if (!(f & kIncons)) {
-        flags(t) |= kIncons;
-        incons_.push_back(t);
-      }
+      flags(t) |= kIncons;  // INCONS is the set of states with this flag
       continue;
     }
     if (h(t, 0) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
@@ -213,7 +209,6 @@ void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
       members_.push_back(s);
     }
   }
-  incons_.clear();
   w1_ = next_w1;
   w2_ = next_w2;
   for (StateId s : members_) clearAllOpen(s);
@@ -291,8 +286,9 @@ void MhaEngine::checkInvariants() const {
            std::to_string(members) + " member entries");
     }
   }
-  for (StateId s : incons_) {
-    if (!(flags(s) & kClosedAnch)) fail("INCONS state not in CLOSED_anch");
+  for (std::size_t s = 0; s < used_; ++s) {
+    const std::uint32_t f = flags(static_cast<StateId>(s));
+    if ((f & kIncons) && !(f & kClosedAnch)) fail("INCONS state not in CLOSED_anch");
   }
 }
 

@@ -36,6 +36,7 @@ class MhaEngine : public SearchBase {
   void setObserver(ExpansionObserver obs) { observer_ = std::move(obs); }
 
  private:
+  // kIncons marks the INCONS list: closed by the anchor, g lowered since (no separate list).
   enum Flag : std::uint32_t { kGenerated = 1, kClosedAnch = 2, kClosedInad = 4, kIncons = 8 };
 
   bool improvePath();  // false if a limit stopped it
@@ -138,7 +139,6 @@ class MhaEngine : public SearchBase {
 
   std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> rec_;  // the records
   std::vector<std::uint32_t> fresh_;  // one record as a new state has it
-  std::vector<StateId> incons_;
   std::vector<StateId> members_;      // scratch for prepareNextIteration
   std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
   std::vector<HeuristicValue> hbuf_;

@@ -25,9 +25,10 @@ class OpenQueue {
   }
 
   /// Empties the queue and makes it a bucket queue with this scale, or a heap if scale is 0.
+  /// Both kinds keep their memory, so the iterations of an anytime search reuse it.
   void reset(double bucket_scale) {
     heap_.clear();
-    buckets_ = BucketQueue(bucket_scale > 0 ? bucket_scale : 1.0);
+    buckets_.reset(bucket_scale > 0 ? bucket_scale : 1.0);
     use_buckets_ = bucket_scale > 0;
   }
   void clear() { use_buckets_ ? buckets_.clear() : heap_.clear(); }
