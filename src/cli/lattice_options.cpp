@@ -105,7 +105,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   c.grid_anchor = o.anchor != "euclidean";
   c.coarse_anchor = o.anchor == "coarse";
   c.coarse_block = o.coarse_block;
-  c.anchor_turn_term = o.turn_term && !o.no_turn_term;
+  c.anchor_turn_term = o.turn_term;  // --no-turn-term is the default (the two exclude each other)
   c.backward_search = o.backward;
   return out;
 }

@@ -30,7 +30,8 @@ struct LatticeOptions {
   std::string anchor = "coarse";
   int coarse_block = 0;
   bool backward = false;
-  bool turn_term = false, no_turn_term = false;
+  bool turn_term = false;
+  bool no_turn_term = false;  // accepted for old scripts; it only restates the default
 
   void addTo(CLI::App& app);
 };

@@ -282,17 +282,6 @@ std::string legend(bool cpu_clock) {
   return buf;
 }
 
-}  // namespace
-
-void dropLateSolutions(TilesRun& run, double time_limit, bool cpu_clock) {
-  std::size_t keep = 0;
-  while (keep < run.result.solutions.size() && run.solutionTime(keep, cpu_clock) <= time_limit) ++keep;
-  run.late_solutions += static_cast<int>(run.result.solutions.size() - keep);
-  run.result.solutions.resize(keep);
-  if (run.solution_cpu_s.size() > keep) run.solution_cpu_s.resize(keep);
-}
-
-namespace {
 std::string lateNote(const std::vector<TilesRun>& runs) {
   int late = 0, late_runs = 0;
   for (const TilesRun& r : runs) {
@@ -304,7 +293,16 @@ std::string lateNote(const std::vector<TilesRun>& runs) {
          " run(s) came after the time limit (a step that does not check the clock, such as "
          "growing a table, was finishing) and are not counted.\n";
 }
+
 }  // namespace
+
+void dropLateSolutions(TilesRun& run, double time_limit, bool cpu_clock) {
+  std::size_t keep = 0;
+  while (keep < run.result.solutions.size() && run.solutionTime(keep, cpu_clock) <= time_limit) ++keep;
+  run.late_solutions += static_cast<int>(run.result.solutions.size() - keep);
+  run.result.solutions.resize(keep);
+  if (run.solution_cpu_s.size() > keep) run.solution_cpu_s.resize(keep);
+}
 
 std::string reportText(const std::vector<TilesRun>& runs, const std::vector<Algorithm>& algorithms,
                        bool cpu_clock) {

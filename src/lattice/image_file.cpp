@@ -94,18 +94,14 @@ Module loadModule() {
       }
       continue;
     }
-    m.read = reinterpret_cast<AmhaImageCodecsReadFn>(
-        dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_READ)));
-    if (m.read == nullptr) {
+    void* read = dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_READ));
+    void* write = read != nullptr ? dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_WRITE)) : nullptr;
+    if (write == nullptr) {  // dlerror() names the missing symbol
       m.error = "cannot load image codecs module " + path + ": " + dlerrorText();
       return m;
     }
-    m.write = reinterpret_cast<AmhaImageCodecsWriteFn>(
-        dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_WRITE)));
-    if (m.write == nullptr) {
-      m.error = "cannot load image codecs module " + path + ": " + dlerrorText();
-      return m;
-    }
+    m.read = reinterpret_cast<AmhaImageCodecsReadFn>(read);
+    m.write = reinterpret_cast<AmhaImageCodecsWriteFn>(write);
     return m;
   }
   m.error = "cannot load image codecs module " + error_path + ": " + error_text;

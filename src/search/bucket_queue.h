@@ -32,7 +32,6 @@ class BucketQueue {
     clear();
   }
 
-  double scale() const { return scale_; }
   bool empty() const { return size_ == 0; }
   std::size_t size() const { return size_; }
 

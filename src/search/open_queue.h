@@ -35,7 +35,6 @@ class OpenQueue {
 
   bool usesBuckets() const { return use_buckets_; }
   bool empty() const { return use_buckets_ ? buckets_.empty() : heap_.empty(); }
-  std::size_t size() const { return use_buckets_ ? buckets_.size() : heap_.size(); }
   double topKey() const { return use_buckets_ ? buckets_.topKey() : heap_.top().f; }
   StateId topId() const { return use_buckets_ ? buckets_.topId() : heap_.top().id; }
 
