@@ -219,25 +219,32 @@ TEST(PlannerNodelet, EveryAlgorithmGivesValidMonotoneSolutions) {
 }
 
 TEST(PlannerNodelet, ActionSendsOneFeedbackPerSolution) {
+  // Declared before the client, whose destructor stops its callback thread: a feedback still
+  // in flight when the test returns must not write into destroyed locals.
+  std::mutex m;
+  std::condition_variable cv;
+  std::vector<PlanSolution> feedback;
   Client client("/planner/plan_anytime", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
   PlanAnytimeGoal goal;
   goal.start = kRoomStart;
   goal.goal = kRoomGoal;
   goal.time_budget = 5.0;
-  std::mutex m;
-  std::vector<PlanSolution> feedback;
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
                   [&](const PlanAnytimeFeedbackConstPtr& f) {
                     std::lock_guard<std::mutex> lock(m);
                     feedback.push_back(f->solution);
+                    cv.notify_all();
                   });
   ASSERT_TRUE(client.waitForResult(ros::Duration(30)));
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
   const auto result = client.getResult();
   ASSERT_EQ(result->status, PlanAnytimeResult::SUCCESS) << result->message;
   expectValidPath(result->path, kRoomStart, kRoomGoal, testMap());
-  std::lock_guard<std::mutex> lock(m);
+  std::unique_lock<std::mutex> lock(m);
+  // Feedback and result travel on separate topics, so the last feedback may arrive after the
+  // result: give it time (a missing one still fails below).
+  cv.wait_for(lock, std::chrono::seconds(5), [&] { return feedback.size() >= result->solutions.size(); });
   ASSERT_EQ(feedback.size(), result->solutions.size());
   for (std::size_t i = 0; i < feedback.size(); ++i) {
     EXPECT_DOUBLE_EQ(feedback[i].cost, result->solutions[i].cost);
@@ -248,17 +255,17 @@ TEST(PlannerNodelet, ActionSendsOneFeedbackPerSolution) {
 }
 
 TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
+  std::mutex m;  // (before the client: see ActionSendsOneFeedbackPerSolution)
+  std::condition_variable cv;
+  std::vector<PlanSolution> feedback;
+  bool done = false;
+  Clock::time_point done_at;
   Client client("/planner/plan_anytime", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
   PlanAnytimeGoal goal;
   goal.start = kMazeStart;
   goal.goal = kMazeGoal;
   goal.time_budget = 60.0;
-  std::mutex m;
-  std::condition_variable cv;
-  std::vector<PlanSolution> feedback;
-  bool done = false;
-  Clock::time_point done_at;
   client.sendGoal(
       goal,
       [&](const actionlib::SimpleClientGoalState&, const PlanAnytimeResultConstPtr&) {
@@ -299,7 +306,8 @@ TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
   EXPECT_EQ(result->status, PlanAnytimeResult::CANCELLED) << result->message;
   ASSERT_FALSE(result->solutions.empty());
-  std::lock_guard<std::mutex> lock(m);
+  std::unique_lock<std::mutex> lock(m);
+  cv.wait_for(lock, std::chrono::seconds(5), [&] { return feedback.size() >= result->solutions.size(); });
   EXPECT_EQ(result->solutions.size(), feedback.size());
   EXPECT_DOUBLE_EQ(result->cost, feedback.back().cost) << "the best path so far";
   expectValidPath(result->path, kMazeStart, kMazeGoal, testMap());
@@ -445,13 +453,13 @@ TEST(PlannerNodelet, BadMapsAreRefusedAndTheCurrentMapKept) {
 }
 
 TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
+  std::atomic<int> feedback{0};  // before the client: see ActionSendsOneFeedbackPerSolution
   Client client("/planner/plan_anytime", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
   PlanAnytimeGoal goal;
   goal.start = kMazeStart;
   goal.goal = kMazeGoal;
   goal.time_budget = 3.0;
-  std::atomic<int> feedback{0};
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
                   [&](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
   for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
@@ -476,13 +484,13 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
 
 TEST(PlannerNodelet, ASecondRequestWaitsAndAThirdGetsBusy) {
   // planner_nodelet.test sets ~max_queued_requests to 1.
+  std::atomic<int> feedback{0};  // before the client: see ActionSendsOneFeedbackPerSolution
   Client client("/planner/plan_anytime", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
   PlanAnytimeGoal goal;
   goal.start = kMazeStart;
   goal.goal = kMazeGoal;
   goal.time_budget = 2.0;
-  std::atomic<int> feedback{0};
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
                   [&](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
   for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
