@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "big_array_allocator.h"
+#include "realloc_vector.h"
 #include "amha_planner/search/types.h"
 
 namespace amha {
@@ -185,7 +185,7 @@ class BucketQueue {
       free_ = blocks_[b].next;
     } else {
       b = static_cast<std::uint32_t>(blocks_.size());
-      blocks_.emplace_back();
+      blocks_.resize(blocks_.size() + 1);
     }
     blocks_[b].count = 0;
     return b;
@@ -193,7 +193,7 @@ class BucketQueue {
 
   double scale_;
   std::vector<FBucket> f_;  // per key f * scale
-  std::vector<Block, BigArrayAllocator<Block>> blocks_;
+  ReallocVector<Block> blocks_;
   std::uint32_t free_ = kNone;  // free blocks, linked through next
   std::size_t size_ = 0;
   std::size_t min_ = kEmptyMin;  // lowest non-empty key bucket while size_ > 0

@@ -8,9 +8,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
-#include "big_array_allocator.h"
+#include "realloc_vector.h"
 #include "amha_planner/search/types.h"
 
 namespace amha {
@@ -81,7 +80,7 @@ class LazyQueue {
 
  private:
   // The root is store_[kPad]; node i's children are 4i+1..4i+4, i.e. store_[4(i+1)..4(i+1)+3],
-  // which start on a 64-byte boundary because the allocator aligns store_ to 64 bytes.
+  // which start on a 64-byte boundary because store_ is aligned to 64 bytes.
   static constexpr std::size_t kPad = 3;
 
   QueueEntry* heap() { return store_.data() + kPad; }
@@ -120,7 +119,7 @@ class LazyQueue {
     a[i] = e;
   }
 
-  std::vector<QueueEntry, BigArrayAllocator<QueueEntry>> store_;
+  ReallocVector<QueueEntry> store_;
 };
 
 }  // namespace detail

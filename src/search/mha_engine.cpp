@@ -16,23 +16,23 @@ std::size_t MhaEngine::engineBytes() const {
   return bytes;
 }
 
-void MhaEngine::writeFreshRecords(std::size_t from, std::size_t to) {
-  // g = infinity, no parent, no flags, in no queue.
-  for (std::size_t s = from; s < to; ++s) {
-    std::memcpy(rec_.data() + s * stride_, fresh_.data(), stride_ * sizeof(std::uint32_t));
-  }
-}
-
 void MhaEngine::growArrays(std::size_t cap) {
-  const std::size_t old_ids = rec_.size() / stride_;
+  // The new records are written by claim() when their ids come into use.
   rec_.reserve(cap * stride_);  // exactly: resize() alone would double, past the memory cap
   rec_.resize(cap * stride_);
-  writeFreshRecords(old_ids, cap);
+}
+
+bool MhaEngine::claimSlow(StateId id) {
+  const std::size_t from = used_;
+  if (id >= capacity_ && !ensure(id)) return false;
+  used_ = static_cast<std::size_t>(id) + 1;
+  std::memset(rec(static_cast<StateId>(from)), 0, (used_ - from) * stride_ * sizeof(std::uint32_t));
+  return true;
 }
 
 void MhaEngine::resetArrays(std::size_t used) {
   for (auto& q : open_) q.clear();
-  writeFreshRecords(0, used);
+  if (used > 0) std::memset(rec_.data(), 0, used * stride_ * sizeof(std::uint32_t));
 }
 
 SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
@@ -45,10 +45,6 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     stride_ = kHeaderWords + nh_ + member_words_;
     stride_ += stride_ % 2;
     open_.assign(nh_, OpenQueue());
-    fresh_.assign(stride_, 0);
-    const Cost inf = kInfiniteCost;
-    std::memcpy(fresh_.data(), &inf, sizeof inf);
-    fresh_[2] = kNoState;
     rec_.clear();
     capacity_ = 0;
     used_ = 0;
@@ -64,7 +60,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
 
   const StateId start = problem.start();
   const StateId goal = problem.goal();
-  if (!ensure(start) || !ensure(goal)) {
+  if (!claim(start) || !claim(goal)) {
     finish(SearchStatus::kMemoryLimit);
     return std::move(result_);
   }
@@ -160,8 +156,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
   // Make room for new ids first (may move the records), then prefetch every successor's
   // record so that their cache misses overlap instead of queueing up one by one.
   for (const Edge& e : succ_) {
-    if (e.to >= capacity_ && !ensure(e.to)) return;  // memory cap: improvePath stops
-    if (e.to >= used_) used_ = static_cast<std::size_t>(e.to) + 1;
+    if (!claim(e.to)) return;  // memory cap: improvePath stops
   }
   for (const Edge& e : succ_) __builtin_prefetch(rec(e.to), 1);
   for (const Edge& e : succ_) {
@@ -170,7 +165,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     const Cost ng = gs + e.cost;
     if (ng >= g(t)) continue;
     setG(t, ng);
-    rec(t)[2] = s;
+    setParent(t, s);
     const std::uint32_t f = flags(t);
     if (f & kClosedAnch) {
       flags(t) |= kIncons;  // INCONS is the set of states with this flag

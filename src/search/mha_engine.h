@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "big_array_allocator.h"
+#include "realloc_vector.h"
 #include "open_queue.h"
 #include "search_base.h"
 
@@ -50,9 +50,11 @@ class MhaEngine : public SearchBase {
 
   // Per-state data lives in one record per state (array of structs), so that touching a state
   // costs one or two cache misses instead of one per array. Record layout in 32-bit words:
-  //   [0..1] g (int64)  [2] parent  [3] flags  [4 .. 4+nh) h_i
+  //   [0..1] kInfiniteCost - g (int64)  [2] ~parent  [3] flags  [4 .. 4+nh) h_i
   //   [4+nh .. 4+nh+mw) membership bits: bit i set <=> the state is in OPEN_i
-  // padded to an even stride so that g stays 8-byte aligned. The queues hold entries lazily
+  // padded to an even stride so that g stays 8-byte aligned. g and parent are stored so that a
+  // new state's record (g = infinity, no parent, nothing set) is all zero bits: the records
+  // then need no initialising, and their pages no touching, until a state is generated. The queues hold entries lazily
   // (see lazy_queue.h): an entry describes a member iff its state's bit is set and its key is
   // the state's current key; anything else is stale and skipped.
   static constexpr std::size_t kHeaderWords = 4;
@@ -63,9 +65,13 @@ class MhaEngine : public SearchBase {
   Cost g(StateId s) const {
     Cost v;
     std::memcpy(&v, rec(s), sizeof v);
-    return v;
+    return kInfiniteCost - v;
   }
-  void setG(StateId s, Cost v) { std::memcpy(rec(s), &v, sizeof v); }
+  void setG(StateId s, Cost g) {
+    const Cost v = kInfiniteCost - g;
+    std::memcpy(rec(s), &v, sizeof v);
+  }
+  void setParent(StateId s, StateId p) { rec(s)[2] = ~p; }
   std::uint32_t& flags(StateId s) { return rec(s)[3]; }
   std::uint32_t flags(StateId s) const { return rec(s)[3]; }
   HeuristicValue h(StateId s, std::size_t i) const { return rec(s)[kHeaderWords + i]; }
@@ -121,11 +127,17 @@ class MhaEngine : public SearchBase {
     return true;
   }
 
+  /// Makes id addressable; a new id (and any unused ids below it) gets a new record: all
+  /// zero, which means g = infinity, no parent, no flags, in no queue. Records are written
+  /// here, when their ids come into use, rather than when the array grows: growing then
+  /// touches no memory, and a new page's first touch is this write.
+  bool claim(StateId id) { return id < used_ || claimSlow(id); }
+  bool claimSlow(StateId id);
+
   Cost gOf(StateId s) const override { return g(s); }
-  StateId parentOf(StateId s) const override { return rec(s)[2]; }
+  StateId parentOf(StateId s) const override { return ~rec(s)[2]; }
   std::size_t engineBytes() const override;
   void growArrays(std::size_t cap) override;
-  void writeFreshRecords(std::size_t from, std::size_t to);  // states [from, to) become new
   void resetArrays(std::size_t used) override;
 
   MhaEngineOptions opt_;
@@ -137,8 +149,7 @@ class MhaEngine : public SearchBase {
   int iteration_ = 0;
   std::size_t round_robin_ = 0;
 
-  std::vector<std::uint32_t, BigArrayAllocator<std::uint32_t>> rec_;  // the records
-  std::vector<std::uint32_t> fresh_;  // one record as a new state has it
+  ReallocVector<std::uint32_t> rec_;  // the records
   std::vector<StateId> members_;      // scratch for prepareNextIteration
   std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
   std::vector<HeuristicValue> hbuf_;
