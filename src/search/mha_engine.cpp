@@ -100,8 +100,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
       break;
     }
     ++iteration_;
-    prepareNextIteration(std::max(w1_ - opt_.dw1, 1.0), std::max(w2_ - opt_.dw2, 1.0));
-    if (slowLimitCheck()) {
+    if (!prepareNextIteration(std::max(w1_ - opt_.dw1, 1.0), std::max(w2_ - opt_.dw2, 1.0)) ||
+        slowLimitCheck()) {
       status = stop_;
       break;
     }
@@ -188,7 +188,10 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
   }
 }
 
-void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
+bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
+  // Every loop here can run over tens of millions of states: check the clock and the cancel
+  // flag every 2^16 of them, and give up (the search stops) when one is hit.
+  auto interrupted = [this](std::size_t k) { return (k & 0xFFFFu) == 0 && slowLimitCheck(); };
   // Lines 38-40: OPEN_0 := OPEN_0 u INCONS, re-keyed with the new w1. A state is in OPEN_0 iff
   // its membership bit is set, and INCONS states are closed (in no queue), so one pass over the
   // records in id order finds both; it streams through memory, where walking the queue's
@@ -196,6 +199,7 @@ void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   members_.clear();
   const std::uint32_t incons = kIncons;
   for (std::size_t i = 0; i < used_; ++i) {
+    if (interrupted(i)) return false;
     const StateId s = static_cast<StateId>(i);
     if (flags(s) & incons) {
       flags(s) &= ~incons;
@@ -206,9 +210,11 @@ void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   }
   w1_ = next_w1;
   w2_ = next_w2;
-  for (StateId s : members_) clearAllOpen(s);
+  for (std::size_t k = 0; k < members_.size(); ++k) clearAllOpen(members_[k]);
   resetQueues();
-  for (StateId s : members_) {
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    if (interrupted(k)) return false;
+    const StateId s = members_[k];
     open_[0].appendUnordered(key(s, 0));
     setInOpen(s, 0);
   }
@@ -219,7 +225,9 @@ void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // Expand would have built with the new weights (one invariant, checked by the tests), and
   // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
   for (std::size_t i = 1; i < nh_; ++i) {
-    for (StateId s : members_) {  // exactly OPEN_0's entries, with their new key_0
+    for (std::size_t k = 0; k < members_.size(); ++k) {  // exactly OPEN_0's entries
+      if (interrupted(k)) return false;
+      const StateId s = members_[k];
       const QueueEntry ki = key(s, i);
       if (admits(ki, key(s, 0).f)) {
         open_[i].appendUnordered(ki);
@@ -229,6 +237,7 @@ void MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
     open_[i].restoreOrder();
   }
   clearClosed();
+  return true;
 }
 
 void MhaEngine::resetQueues() {

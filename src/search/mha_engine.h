@@ -42,7 +42,7 @@ class MhaEngine : public SearchBase {
   bool improvePath();  // false if a limit stopped it
   void expand(StateId s, std::size_t queue);
   void generate(StateId s);  // computes and caches the heuristics of a new state
-  void prepareNextIteration(double next_w1, double next_w2);
+  bool prepareNextIteration(double next_w1, double next_w2);  // false if a limit stopped it
   void resetQueues();  // empties every queue and picks buckets or heaps for the current w1
   void clearClosed();
   Cost lowerBound() const;  // min over OPEN_0 and INCONS of g + h0
@@ -150,7 +150,7 @@ class MhaEngine : public SearchBase {
   std::size_t round_robin_ = 0;
 
   ReallocVector<std::uint32_t> rec_;  // the records
-  std::vector<StateId> members_;      // scratch for prepareNextIteration
+  ReallocVector<StateId> members_;    // scratch for prepareNextIteration
   std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
   std::vector<HeuristicValue> hbuf_;
   ExpansionObserver observer_;

@@ -6,9 +6,10 @@
 // that no clock check can interrupt, a transient peak of old + new memory, and a first touch of
 // every page of the new block (writing the new elements), where page faults are expensive
 // (on this VM kind a fifth of a big 63-puzzle run went to the kernel's page clearing). This
-// grows with realloc: glibc moves a large (mmap-ed) block with mremap, which remaps pages
-// instead of copying them, and pages past what the search has reached stay untouched; small
-// blocks come from the heap and are reused by the next search without new page faults.
+// grows with realloc and leaves new elements unwritten. glibc moves a large (mmap-ed) block
+// with mremap, which remaps pages instead of copying them; a heap block grows in place when
+// it is at the top of the heap, and is copied otherwise. (`amha tiles` keeps all blocks on
+// the heap so that runs reuse each other's pages: there, a growth can still copy.)
 #pragma once
 
 #include <algorithm>
