@@ -54,9 +54,10 @@ class MhaEngine : public SearchBase {
   //   [4+nh .. 4+nh+mw) membership bits: bit i set <=> the state is in OPEN_i
   // padded to an even stride so that g stays 8-byte aligned. g and parent are stored so that a
   // new state's record (g = infinity, no parent, nothing set) is all zero bits: the records
-  // then need no initialising, and their pages no touching, until a state is generated. The queues hold entries lazily
-  // (see lazy_queue.h): an entry describes a member iff its state's bit is set and its key is
-  // the state's current key; anything else is stale and skipped.
+  // then need no initialising, and their pages no touching, until a state is generated.
+  // The queues hold entries lazily (see lazy_queue.h): an entry describes a member iff its
+  // state's bit is set and its key is the state's current key; anything else is stale and
+  // skipped.
   static constexpr std::size_t kHeaderWords = 4;
   std::uint32_t* rec(StateId s) { return rec_.data() + static_cast<std::size_t>(s) * stride_; }
   const std::uint32_t* rec(StateId s) const {

@@ -84,7 +84,9 @@ class ReallocVector {
   static constexpr std::size_t kAlign = 64;
 
   void reallocate(std::size_t n) {
-    if (n > (static_cast<std::size_t>(-1) / 2 - kAlign) / sizeof(T)) throw std::bad_array_new_length();
+    if (n > (static_cast<std::size_t>(-1) / 2 - kAlign) / sizeof(T)) {
+      throw std::bad_array_new_length();
+    }
     const std::size_t old_offset = static_cast<std::size_t>(reinterpret_cast<char*>(data_) -
                                                             static_cast<char*>(raw_));
     void* raw = std::realloc(raw_, n * sizeof(T) + kAlign);
