@@ -37,7 +37,7 @@ void LatticeOptions::addTo(CLI::App& app) {
       "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
       "many more expansions on large maps where turns are cheap");
   // Both together would silently mean one of them: refuse the pair.
-  app.add_flag("--no-turn-term", no_turn_term, "no turning term (the default; kept for old scripts)")
+  app.add_flag("--no-turn-term", "no turning term (the default; kept for old scripts)")
       ->excludes(with_turn);
   app.add_flag("--backward", backward, "search from the goal back to the start (as SBPL does by default)");
 }

@@ -30,8 +30,7 @@ struct LatticeOptions {
   std::string anchor = "coarse";
   int coarse_block = 0;
   bool backward = false;
-  bool turn_term = false;
-  bool no_turn_term = false;  // accepted for old scripts; it only restates the default
+  bool turn_term = false;  // --no-turn-term, kept for old scripts, only restates the default
 
   void addTo(CLI::App& app);
 };

@@ -1,5 +1,5 @@
-// The A-MHA* engine's queue for keys of any size (see open_queue.h): a 4-ary min-heap of 16-byte (f, h, id) entries with no
-// position index. Entries are never changed or removed in place: a state whose key drops is
+// The A-MHA* engine's queue for keys of any size (see open_queue.h): a 4-ary min-heap of
+// 16-byte (f, h, id) entries with no position index. Entries are never changed or removed in place: a state whose key drops is
 // pushed again, and the engine skips entries that no longer describe a member when they reach
 // the top (the engine keeps membership in its per-state records). Compared with an indexed
 // binary heap this never writes into other states' records while sifting, removes a state

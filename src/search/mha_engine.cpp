@@ -88,7 +88,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
       break;
     }
     const double nominal = w1_ * w2_;
-    const Cost lb = lowerBound();
+    const Cost lb = collectOpen0AndIncons();
     report(nominal, lb, iteration_, w1_, w2_);
     const bool certified_optimal = result_.solutions.back().certified_bound <= 1.0;
     if ((w1_ <= 1.0 && w2_ <= 1.0) || (certified_optimal && opt_.stop_when_certified_optimal)) {
@@ -192,22 +192,9 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // Every loop here can run over tens of millions of states: check the clock and the cancel
   // flag every 2^16 of them, and give up (the search stops) when one is hit.
   auto interrupted = [this](std::size_t k) { return (k & 0xFFFFu) == 0 && slowLimitCheck(); };
-  // Lines 38-40: OPEN_0 := OPEN_0 u INCONS, re-keyed with the new w1. A state is in OPEN_0 iff
-  // its membership bit is set, and INCONS states are closed (in no queue), so one pass over the
-  // records in id order finds both; it streams through memory, where walking the queue's
-  // entries would visit the records in random order (seconds for millions of states).
-  members_.clear();
-  const std::uint32_t incons = kIncons;
-  for (std::size_t i = 0; i < used_; ++i) {
-    if (interrupted(i)) return false;
-    const StateId s = static_cast<StateId>(i);
-    if (flags(s) & incons) {
-      flags(s) &= ~incons;
-      if (h(s, 0) != kInfiniteHeuristic) members_.push_back(s);
-    } else if (inOpen(s, 0)) {
-      members_.push_back(s);
-    }
-  }
+  // Lines 38-40: OPEN_0 := OPEN_0 u INCONS, re-keyed with the new w1. members_ holds that
+  // union already: collectOpen0AndIncons() gathered it for the lower bound of the solution just
+  // reported, and nothing has changed since. clearClosed() empties INCONS at the end.
   w1_ = next_w1;
   w2_ = next_w2;
   for (std::size_t k = 0; k < members_.size(); ++k) clearAllOpen(members_[k]);
@@ -246,24 +233,31 @@ void MhaEngine::resetQueues() {
 }
 
 void MhaEngine::clearClosed() {
-  const std::uint32_t keep = ~static_cast<std::uint32_t>(kClosedAnch | kClosedInad);
+  const std::uint32_t keep = ~static_cast<std::uint32_t>(kClosedAnch | kClosedInad | kIncons);
   for (std::size_t s = 0; s < used_; ++s) flags(static_cast<StateId>(s)) &= keep;
 }
 
-Cost MhaEngine::lowerBound() const {
+Cost MhaEngine::collectOpen0AndIncons() {
   // Every state whose g changed since its last expansion is in OPEN_0 or INCONS (Expand puts
   // it in one of them; prepareNextIteration moves INCONS into OPEN_0). On an optimal path, the
   // first state whose g is above optimal has a predecessor p with g(p) = g*(p) that is not
   // expanded with that g, so p is in OPEN_0 or INCONS and g(p) + h0(p) <= g*(goal) by
   // admissibility. Hence this minimum is a lower bound on the optimal cost (or the solution is
   // already optimal). States with h0 = infinity cannot lie on any path to the goal.
-  // One pass in id order over the records (see prepareNextIteration).
+  // A state is in OPEN_0 iff its membership bit is set (and then its h0 is finite), and INCONS
+  // states are closed, in no queue. So one pass over the records in id order finds both sets;
+  // it streams through memory, where walking the queue's entries would visit the records in
+  // random order (seconds for millions of states). The same pass collects them into members_
+  // for prepareNextIteration.
+  members_.clear();
   Cost lb = kInfiniteCost;
   for (std::size_t i = 0; i < used_; ++i) {
     const StateId s = static_cast<StateId>(i);
     if (!(flags(s) & kIncons) && !inOpen(s, 0)) continue;
     const HeuristicValue h0 = h(s, 0);
-    if (h0 != kInfiniteHeuristic) lb = std::min(lb, g(s) + static_cast<Cost>(h0));
+    if (h0 == kInfiniteHeuristic) continue;
+    lb = std::min(lb, g(s) + static_cast<Cost>(h0));
+    members_.push_back(s);
   }
   return lb;
 }

@@ -44,8 +44,10 @@ class MhaEngine : public SearchBase {
   void generate(StateId s);  // computes and caches the heuristics of a new state
   bool prepareNextIteration(double next_w1, double next_w2);  // false if a limit stopped it
   void resetQueues();  // empties every queue and picks buckets or heaps for the current w1
-  void clearClosed();
-  Cost lowerBound() const;  // min over OPEN_0 and INCONS of g + h0
+  void clearClosed();  // also empties INCONS
+  // Collects OPEN_0 u INCONS (finite h0) into members_, in id order, and returns the minimum
+  // of g + h0 over them: a lower bound on the optimal cost.
+  Cost collectOpen0AndIncons();
   void checkInvariants() const;
 
   // Per-state data lives in one record per state (array of structs), so that touching a state
@@ -151,7 +153,7 @@ class MhaEngine : public SearchBase {
   std::size_t round_robin_ = 0;
 
   ReallocVector<std::uint32_t> rec_;  // the records
-  ReallocVector<StateId> members_;    // scratch for prepareNextIteration
+  ReallocVector<StateId> members_;    // OPEN_0 u INCONS, from collectOpen0AndIncons()
   std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
   std::vector<HeuristicValue> hbuf_;
   ExpansionObserver observer_;
