@@ -62,6 +62,25 @@ class BucketQueue {
     if (k < min_) min_ = k;
   }
 
+  /// push() when it allocates nothing (its stack exists and its newest block has room, the
+  /// common case); otherwise false and nothing changes. Saves a growthBytes() lookup per push.
+  bool tryPush(double f, HeuristicValue h, StateId id) {
+    const std::size_t k = bucketOf(f);
+    if (k >= f_.size()) return false;
+    FBucket& fb = f_[k];
+    if (fb.count == 0 || h < fb.base || h - fb.base >= fb.heads.size()) return false;
+    const std::uint32_t head = fb.heads[h - fb.base];
+    if (head == kNone) return false;
+    Block& b = blocks_[head];
+    if (b.count == kIds) return false;
+    b.ids[b.count++] = id;
+    ++fb.count;
+    if (h < fb.min_h) fb.min_h = h;
+    ++size_;
+    if (k < min_) min_ = k;
+    return true;
+  }
+
   void pop() {
     FBucket& fb = f_[min_];
     std::uint32_t& head = fb.heads[fb.min_h - fb.base];

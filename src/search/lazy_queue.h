@@ -45,6 +45,13 @@ class LazyQueue {
     siftUp(size() - 1);
   }
 
+  /// push() when the storage has room; otherwise false and nothing changes.
+  bool tryPush(const QueueEntry& e) {
+    if (store_.size() == store_.capacity()) return false;
+    push(e);
+    return true;
+  }
+
   void pop() {
     QueueEntry* a = heap();
     const std::size_t n = size() - 1;

@@ -123,9 +123,11 @@ class MhaEngine : public SearchBase {
   /// (kMemoryLimit) without reporting anything more, since OPEN_i is no longer complete.
   bool pushOpen(std::size_t i, const QueueEntry& e) {
     OpenQueue& q = open_[i];
-    const std::size_t growth = q.growthBytes(e);
-    if (growth > 0 && !roomFor(growth)) return !stopWith(SearchStatus::kMemoryLimit);
-    q.push(e);
+    if (!q.tryPush(e)) {
+      const std::size_t growth = q.growthBytes(e);
+      if (growth > 0 && !roomFor(growth)) return !stopWith(SearchStatus::kMemoryLimit);
+      q.push(e);
+    }
     setInOpen(e.id, i);
     return true;
   }
@@ -155,7 +157,6 @@ class MhaEngine : public SearchBase {
   ReallocVector<std::uint32_t> rec_;  // the records
   ReallocVector<StateId> members_;    // OPEN_0 u INCONS, from collectOpen0AndIncons()
   std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
-  std::vector<HeuristicValue> hbuf_;
   ExpansionObserver observer_;
 };
 

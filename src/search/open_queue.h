@@ -39,6 +39,10 @@ class OpenQueue {
   StateId topId() const { return use_buckets_ ? buckets_.topId() : heap_.top().id; }
 
   void push(const QueueEntry& e) { use_buckets_ ? buckets_.push(e.f, e.h, e.id) : heap_.push(e); }
+  /// push(e) if that allocates nothing, else false (see growthBytes).
+  bool tryPush(const QueueEntry& e) {
+    return use_buckets_ ? buckets_.tryPush(e.f, e.h, e.id) : heap_.tryPush(e);
+  }
   void pop() { use_buckets_ ? buckets_.pop() : heap_.pop(); }
 
   /// Adds without ordering; call restoreOrder() before the next top or pop.

@@ -1,6 +1,7 @@
 // The bucket queue against a reference (a sorted list): pops come in (key, h) order, newest
 // first among equal ones, also when keys or h values are pushed below the current minimum or
-// the queue is emptied and refilled; the memory it reports covers what it holds.
+// the queue is emptied and refilled; the memory it reports covers what it holds; tryPush
+// pushes exactly when nothing must be allocated.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,7 +54,10 @@ TEST(BucketQueue, MatchesSortedReferenceUnderRandomPushesAndPops) {
       const double base = step / 10;
       const double f = std::max(0.0, base + static_cast<double>(rng() % 400) / 4.0 - 50.0);
       const auto h = static_cast<HeuristicValue>(rng() % 40);
-      q.push(f, h, static_cast<StateId>(order));
+      // tryPush (used by the engine first) must order its entries exactly like push.
+      if (rng() % 2 == 0 || !q.tryPush(f, h, static_cast<StateId>(order))) {
+        q.push(f, h, static_cast<StateId>(order));
+      }
       ref.emplace_back(f, h, order++);
     } else {
       auto best = std::min_element(ref.begin(), ref.end(), before);
@@ -82,6 +86,15 @@ TEST(BucketQueue, ReportsTheMemoryItsNextPushNeeds) {
   EXPECT_EQ(q.growthBytes(10.0, 3), 0u);     // room left in the stack's block
   EXPECT_GT(q.growthBytes(1000.0, 3), 0u);   // the key array must grow
   EXPECT_GT(q.growthBytes(10.0, 500), 0u);   // the key's stack array must grow
+  // tryPush pushes exactly when nothing must be allocated.
+  EXPECT_FALSE(q.tryPush(1000.0, 3, 2));
+  EXPECT_FALSE(q.tryPush(10.0, 500, 2));
+  EXPECT_FALSE(q.tryPush(10.0, 4, 2));  // no stack for h = 4 yet
+  EXPECT_EQ(q.size(), 1u);
+  for (StateId id = 2; q.growthBytes(10.0, 3) == 0; ++id) EXPECT_TRUE(q.tryPush(10.0, 3, id));
+  EXPECT_EQ(q.size(), 14u);  // one 64-byte block holds 14 ids
+  EXPECT_FALSE(q.tryPush(10.0, 3, 99));
+  EXPECT_EQ(q.topId(), 14u);  // newest first
 }
 
 TEST(OpenQueue, PicksBucketsOnlyForKeysThatScaleToIntegers) {
