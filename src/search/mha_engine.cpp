@@ -135,7 +135,6 @@ bool MhaEngine::improvePath() {
       if (cleanTop(i) && open_[i].topKey() <= w2_ * min0) q = i;
     }
     const StateId s = open_[q].topId();
-    problem_->prefetch(s);  // overlaps with the pop's walk down the heap
     open_[q].pop();
     // The next round tests the tops of OPEN_0 and of the next OPEN_i against their records:
     // start loading those now, while s is expanded (if expand() changes a top, the hint is

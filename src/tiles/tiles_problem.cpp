@@ -91,6 +91,22 @@ class TilesSpace final : public TilesProblem {
       hash[k] = hashWords(child[k]);
       __builtin_prefetch(&slots_[hash[k] & mask_]);
     }
+    // The next expansion is most often a child of s whose move brought its tile closer to the
+    // tile's goal (MD falls, and every heuristic weighs MD): prefetch the table slots of those
+    // children's own children now, so that the next expansion's slot misses overlap with this
+    // one's work instead of stalling it (measured: about a tenth more expansions per second).
+    for (int k = 0; k < n; ++k) {
+      if (k == from_k) continue;
+      const int p = neighbours_[b][k];
+      if (dist_[tile[k] * n2_ + b] >= dist_[tile[k] * n2_ + p]) continue;
+      for (int j = 0; j < num_neighbours_[p]; ++j) {
+        const int q = neighbours_[p][j];
+        if (q == b) continue;
+        std::uint64_t grandchild[W];
+        makeChild(child[k], p, q, grandchild);
+        __builtin_prefetch(&slots_[hashWords(grandchild) & mask_]);
+      }
+    }
     for (int k = 0; k < n; ++k) {
       if (k == from_k) continue;
       const std::uint32_t tag = tagOf(hash[k]);
@@ -116,23 +132,6 @@ class TilesSpace final : public TilesProblem {
                       linkFrom(s, b, k));
       }
       out.push_back(Edge{id, 1});
-    }
-  }
-
-  // Called for the state about to be expanded, before the search pops it: start loading the
-  // table slots of its children now, so that those misses overlap with the pop's walk down the
-  // heap instead of stalling successors(). Its board is usually still cached (the states at
-  // the queue tops were mostly generated moments ago), and successors() repeats the cheap part.
-  void prefetch(StateId s) const override {
-    const Chunk& c = chunks_[s >> kChunkBits];
-    __builtin_prefetch(&c.from[s & (kChunkStates - 1)]);
-    std::uint64_t parent[W];
-    std::memcpy(parent, words(s), sizeof(parent));
-    const int b = infoBlank(c.info[s & (kChunkStates - 1)]);
-    for (int k = 0; k < num_neighbours_[b]; ++k) {
-      std::uint64_t child[W];
-      makeChild(parent, b, neighbours_[b][k], child);
-      __builtin_prefetch(&slots_[hashWords(child) & mask_]);
     }
   }
 

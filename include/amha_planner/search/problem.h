@@ -25,10 +25,6 @@ class SearchProblem {
   /// (dense, in discovery order). Must not allocate once `out` has grown to the branching factor.
   virtual void successors(StateId s, std::vector<Edge>& out) = 0;
 
-  /// Hint that successors(s) is called soon: a domain may start loading s's data from memory
-  /// (the search calls it before its own queue work, so that the two latencies overlap).
-  virtual void prefetch(StateId /*s*/) const {}
-
   /// Number of heuristics, anchor included (N + 1 >= 1).
   virtual std::size_t numHeuristics() const = 0;
 
