@@ -55,29 +55,16 @@ class BucketQueue {
       blocks_[nb].next = head;
       head = nb;
     }
-    Block& b = blocks_[head];
-    b.ids[b.count++] = id;
-    if (fb.count++ == 0 || h < fb.min_h) fb.min_h = h;
-    ++size_;
-    if (k < min_) min_ = k;
+    store(k, fb, blocks_[head], h, id);
   }
 
   /// push() when it allocates nothing (its stack exists and its newest block has room, the
   /// common case); otherwise false and nothing changes. Saves a growthBytes() lookup per push.
   bool tryPush(double f, HeuristicValue h, StateId id) {
     const std::size_t k = bucketOf(f);
-    if (k >= f_.size()) return false;
-    FBucket& fb = f_[k];
-    if (fb.count == 0 || h < fb.base || h - fb.base >= fb.heads.size()) return false;
-    const std::uint32_t head = fb.heads[h - fb.base];
-    if (head == kNone) return false;
-    Block& b = blocks_[head];
-    if (b.count == kIds) return false;
-    b.ids[b.count++] = id;
-    ++fb.count;
-    if (h < fb.min_h) fb.min_h = h;
-    ++size_;
-    if (k < min_) min_ = k;
+    const std::uint32_t b = blockWithRoom(k, h);
+    if (b == kNone) return false;
+    store(k, f_[k], blocks_[b], h, id);
     return true;
   }
 
@@ -133,15 +120,10 @@ class BucketQueue {
     std::size_t bytes = 0;
     if (k >= f_.size()) {
       bytes += std::max(k + 1, 2 * f_.size()) * sizeof(FBucket) + sizeof(std::uint32_t);
-    } else {
-      const FBucket& fb = f_[k];
-      if (fb.count > 0 && h >= fb.base && h - fb.base < fb.heads.size()) {
-        // The common case: the stack exists; nothing to allocate if its newest block has room.
-        const std::uint32_t head = fb.heads[h - fb.base];
-        if (head != kNone && blocks_[head].count < kIds) return 0;
-      } else if (fb.spanWith(h) > fb.heads.capacity()) {
-        bytes += 2 * fb.spanWith(h) * sizeof(std::uint32_t);
-      }
+    } else if (blockWithRoom(k, h) != kNone) {
+      return 0;  // the common case: the stack's newest block has room
+    } else if (f_[k].spanWith(h) > f_[k].heads.capacity()) {
+      bytes += 2 * f_[k].spanWith(h) * sizeof(std::uint32_t);
     }
     // Past this point the push takes a new block.
     if (free_ == kNone && blocks_.size() == blocks_.capacity()) {
@@ -197,6 +179,24 @@ class BucketQueue {
   // f * scale is a whole number (up to rounding in the product), so adding 0.5 and truncating
   // rounds it; std::llround is a library call.
   std::size_t bucketOf(double f) const { return static_cast<std::size_t>(f * scale_ + 0.5); }
+
+  // The newest block of the stack for key bucket k and h if that stack exists and the block
+  // has room (a push there allocates nothing), else kNone.
+  std::uint32_t blockWithRoom(std::size_t k, HeuristicValue h) const {
+    if (k >= f_.size()) return kNone;
+    const FBucket& fb = f_[k];
+    if (fb.count == 0 || h < fb.base || h - fb.base >= fb.heads.size()) return kNone;
+    const std::uint32_t head = fb.heads[h - fb.base];
+    return head != kNone && blocks_[head].count < kIds ? head : kNone;
+  }
+
+  // Adds id to block b, the newest of fb's stack for h (fb is key bucket k).
+  void store(std::size_t k, FBucket& fb, Block& b, HeuristicValue h, StateId id) {
+    b.ids[b.count++] = id;
+    if (fb.count++ == 0 || h < fb.min_h) fb.min_h = h;
+    ++size_;
+    if (k < min_) min_ = k;
+  }
 
   std::uint32_t newBlock() {
     std::uint32_t b = free_;

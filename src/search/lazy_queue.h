@@ -1,9 +1,10 @@
 // The A-MHA* engine's queue for keys of any size (see open_queue.h): a 4-ary min-heap of
-// 16-byte (f, h, id) entries with no position index. Entries are never changed or removed in place: a state whose key drops is
-// pushed again, and the engine skips entries that no longer describe a member when they reach
-// the top (the engine keeps membership in its per-state records). Compared with an indexed
-// binary heap this never writes into other states' records while sifting, removes a state
-// from every queue in O(1), and keeps a node's four children in one cache line.
+// 16-byte (f, h, id) entries with no position index. Entries are never changed or removed in
+// place: a state whose key drops is pushed again, and the engine skips entries that no longer
+// describe a member when they reach the top (the engine keeps membership in its per-state
+// records). Compared with an indexed binary heap this never writes into other states' records
+// while sifting, removes a state from every queue in O(1), and keeps a node's four children in
+// one cache line.
 #pragma once
 
 #include <cstddef>
