@@ -1,6 +1,7 @@
 # The search core: algorithms only; depends on neither ROS nor OpenCV.
 add_library(amha_search
   src/search/planner_config.cpp
+  src/search/large_blocks.cpp
   src/search/search_base.cpp
   src/search/mha_engine.cpp
   src/search/ana_star.cpp

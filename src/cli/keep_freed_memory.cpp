@@ -2,13 +2,18 @@
 
 #include <malloc.h>
 
+#include "amha_planner/search/memory_reuse.h"
 
 namespace amha {
 namespace cli {
 
 void keepFreedMemoryMapped() {
-  // Blocks above M_MMAP_THRESHOLD (at most 32 MiB) would be mmap'ed and unmapped on free;
-  // with M_MMAP_MAX = 0 they come from the heap, whose freed top is never trimmed.
+  // The search's large arrays have their own mappings: keep them in the search's pool.
+  setReuseFreedSearchMemory(true);
+  // Everything else (e.g. the tile domain's boards and table): blocks above M_MMAP_THRESHOLD
+  // (at most 32 MiB) would be mmap'ed and unmapped on free; with M_MMAP_MAX = 0 they come
+  // from the heap, whose freed top is never trimmed. None of the large ones grows by realloc,
+  // so none is ever copied on the heap.
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, -1);  // -1: never trim
 }

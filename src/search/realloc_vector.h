@@ -6,10 +6,11 @@
 // that no clock check can interrupt, a transient peak of old + new memory, and a first touch of
 // every page of the new block (writing the new elements), where page faults are expensive
 // (on this VM kind a fifth of a big 63-puzzle run went to the kernel's page clearing). This
-// grows with realloc and leaves new elements unwritten. glibc moves a large (mmap-ed) block
-// with mremap, which remaps pages instead of copying them; a heap block grows in place when
-// it is at the top of the heap, and is copied otherwise. (`amha tiles` keeps all blocks on
-// the heap so that runs reuse each other's pages: there, a growth can still copy.)
+// leaves new elements unwritten, grows small blocks with realloc, and keeps a block of
+// kLargeBlockBytes or more in its own mapping, grown with mremap, which remaps pages instead of
+// copying them (large_blocks.h). realloc would do that only for blocks malloc had mapped,
+// which a process may turn off (mallopt M_MMAP_MAX), and a heap block that cannot grow in
+// place is copied: a 10 s run of `amha tiles` once took 14 s that way.
 #pragma once
 
 #include <algorithm>
@@ -19,6 +20,8 @@
 #include <cstring>
 #include <new>
 #include <type_traits>
+
+#include "large_blocks.h"
 
 namespace amha {
 namespace detail {
@@ -43,7 +46,13 @@ class ReallocVector {
     swap(o);
     return *this;
   }
-  ~ReallocVector() { std::free(raw_); }
+  ~ReallocVector() {
+    if (mapped_ > 0) {
+      releaseLargeBlock(raw_, mapped_);
+    } else {
+      std::free(raw_);
+    }
+  }
 
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
@@ -76,6 +85,7 @@ class ReallocVector {
     std::swap(data_, o.data_);
     std::swap(size_, o.size_);
     std::swap(capacity_, o.capacity_);
+    std::swap(mapped_, o.mapped_);
   }
 
  private:
@@ -87,27 +97,45 @@ class ReallocVector {
     if (n > (static_cast<std::size_t>(-1) / 2 - kAlign) / sizeof(T)) {
       throw std::bad_array_new_length();
     }
+    const std::size_t bytes = n * sizeof(T);
+    if (mapped_ > 0) {  // a mapping: page-aligned, grows without a copy
+      raw_ = growLargeBlock(raw_, bytes, &mapped_);
+      data_ = static_cast<T*>(raw_);
+    } else if (bytes >= kLargeBlockBytes) {  // from a small block (below 4 MiB) to a mapping
+      std::size_t mapped = 0;
+      void* block = mapLargeBlock(bytes, &mapped);
+      if (size_ > 0) std::memcpy(block, data_, size_ * sizeof(T));
+      std::free(raw_);
+      raw_ = block;
+      data_ = static_cast<T*>(block);
+      mapped_ = mapped;
+    } else {
+      reallocateSmall(bytes);
+    }
+    capacity_ = n;
+  }
+
+  void reallocateSmall(std::size_t bytes) {
     const std::size_t old_offset = static_cast<std::size_t>(reinterpret_cast<char*>(data_) -
                                                             static_cast<char*>(raw_));
-    void* raw = std::realloc(raw_, n * sizeof(T) + kAlign);
+    void* raw = std::realloc(raw_, bytes + kAlign);
     if (raw == nullptr) throw std::bad_alloc();
     const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(raw);
     const std::size_t offset = static_cast<std::size_t>((kAlign - at % kAlign) % kAlign);
-    // realloc keeps the bytes at the old offset; a block that moved may need a new one (a
-    // large block keeps its offset, so this copy is confined to small blocks).
+    // realloc keeps the bytes at the old offset; a block that moved may need a new one.
     if (raw_ != nullptr && offset != old_offset) {
       std::memmove(static_cast<char*>(raw) + offset, static_cast<char*>(raw) + old_offset,
                    size_ * sizeof(T));
     }
     raw_ = raw;
     data_ = reinterpret_cast<T*>(static_cast<char*>(raw) + offset);
-    capacity_ = n;
   }
 
   void* raw_ = nullptr;
   T* data_ = nullptr;
   std::size_t size_ = 0;
   std::size_t capacity_ = 0;
+  std::size_t mapped_ = 0;  // size of raw_'s mapping; 0: raw_ is a malloc block
 };
 
 }  // namespace detail

@@ -1,12 +1,15 @@
 // ReallocVector keeps its elements across growth of every size (small heap blocks, large
-// blocks that glibc moves with mremap), keeps them 64-byte aligned, and honours exact reserve,
-// copies and moves.
+// blocks in their own mappings, grown with mremap), keeps them 64-byte aligned, and honours
+// exact reserve, copies and moves; freed large blocks are reused only when asked for.
 #include <gtest/gtest.h>
+
+#include <malloc.h>
 
 #include <cstdint>
 #include <utility>
 
 #include "../../src/search/realloc_vector.h"
+#include "amha_planner/search/memory_reuse.h"
 
 namespace amha {
 namespace detail {
@@ -16,7 +19,7 @@ bool aligned64(const void* p) { return reinterpret_cast<std::uintptr_t>(p) % 64 
 
 TEST(ReallocVector, KeepsElementsAndAlignmentWhileGrowingPastLargeSizes) {
   ReallocVector<std::uint32_t> v;
-  // 2^24 elements (64 MiB) takes it past glibc's mmap threshold, where growth is an mremap.
+  // 2^24 elements (64 MiB) takes it past kLargeBlockBytes, where growth is an mremap.
   const std::uint32_t n = 1u << 24;
   for (std::uint32_t i = 0; i < n; ++i) {
     v.push_back(i * 2654435761u);
@@ -75,6 +78,56 @@ TEST(ReallocVector, CopiesAndMovesOwnTheirElements) {
   m.pop_back();
   EXPECT_EQ(m.size(), 299u);
   EXPECT_EQ(c.size(), 300u);
+}
+
+TEST(ReallocVector, LargeBlocksAreReusedOnlyWhenAskedAndKeepTheirContents) {
+  setReuseFreedSearchMemory(false);
+  ASSERT_EQ(pooledLargeBlockBytes(), 0u);
+  constexpr std::size_t kBig = (kLargeBlockBytes / sizeof(std::uint64_t)) * 2;  // 8 MiB
+  {
+    ReallocVector<std::uint64_t> v;
+    v.resize(kBig);
+  }
+  EXPECT_EQ(pooledLargeBlockBytes(), 0u) << "without reuse a freed block is unmapped";
+
+  setReuseFreedSearchMemory(true);
+  {
+    ReallocVector<std::uint64_t> v;
+    v.resize(kBig);
+    for (std::size_t i = 0; i < kBig; ++i) v[i] = i;
+  }
+  EXPECT_GE(pooledLargeBlockBytes(), kBig * sizeof(std::uint64_t));
+  {
+    // A smaller large block takes the pooled one over (capacity stays exactly what was asked
+    // for); a larger one grows it in place or by remapping, keeping what was written.
+    ReallocVector<std::uint64_t> v;
+    v.reserve(kBig / 2 + 1);
+    EXPECT_EQ(v.capacity(), kBig / 2 + 1);
+    EXPECT_EQ(pooledLargeBlockBytes(), 0u);
+    v.resize(kBig);
+    for (std::size_t i = 0; i < kBig; ++i) v[i] = ~i;
+    v.resize(4 * kBig);
+    for (std::size_t i = kBig; i < 4 * kBig; ++i) v[i] = i;
+    for (std::size_t i = 0; i < kBig; ++i) ASSERT_EQ(v[i], ~i) << i;
+    for (std::size_t i = kBig; i < 4 * kBig; ++i) ASSERT_EQ(v[i], i) << i;
+    EXPECT_TRUE(aligned64(v.data()));
+  }
+  EXPECT_GE(pooledLargeBlockBytes(), 4 * kBig * sizeof(std::uint64_t));
+  setReuseFreedSearchMemory(false);  // also returns the pool
+  EXPECT_EQ(pooledLargeBlockBytes(), 0u);
+}
+
+TEST(ReallocVector, GrowsLargeBlocksWhenMallocMapsNothing) {
+  // What `amha tiles` tells malloc; large arrays must still grow and keep their elements.
+  mallopt(M_MMAP_MAX, 0);
+  ReallocVector<std::uint32_t> v, other;
+  for (std::uint32_t i = 0; i < (1u << 23); ++i) {
+    v.push_back(i);
+    if (i % 4 == 0) other.push_back(~i);  // interleaved, so that no block sits at the heap top
+  }
+  for (std::uint32_t i = 0; i < (1u << 23); ++i) ASSERT_EQ(v[i], i) << i;
+  for (std::uint32_t i = 0; i < (1u << 21); ++i) ASSERT_EQ(other[i], ~(4 * i)) << i;
+  mallopt(M_MMAP_MAX, 65536);  // glibc's default
 }
 
 }  // namespace

@@ -1,0 +1,15 @@
+// Process-wide choice for the search's large arrays (records, queue storage): return freed
+// ones to the kernel, or keep them for the next search in the process.
+#pragma once
+
+namespace amha {
+
+/// With reuse on, a search's large arrays are not unmapped when it ends but kept, and the next
+/// search takes them over with their pages already faulted in, as a long-lived planner that
+/// keeps its buffers would. Benchmarks running thousands of searches use it (otherwise every
+/// run pays the kernel's zeroing of its whole state space again: about a fifth of the CPU time
+/// on Korf's 15-puzzles). The price: resident memory stays at the largest search's peak.
+/// Off by default. Thread-safe; affects arrays freed after the call.
+void setReuseFreedSearchMemory(bool reuse);
+
+}  // namespace amha

@@ -1,0 +1,126 @@
+#include "large_blocks.h"
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <new>
+#include <utility>
+#include <vector>
+
+#include "amha_planner/search/memory_reuse.h"
+
+namespace amha {
+namespace detail {
+namespace {
+
+std::atomic<bool> g_reuse{false};
+
+struct Pool {
+  std::mutex mutex;
+  std::vector<std::pair<void*, std::size_t>> blocks;  // (mapping, size)
+};
+
+Pool& pool() {
+  static Pool* p = new Pool;  // never destroyed: blocks may be released during static teardown
+  return *p;
+}
+
+std::size_t roundToPages(std::size_t bytes) {
+  static const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  if (bytes > static_cast<std::size_t>(-1) - page) throw std::bad_alloc();
+  return (bytes + page - 1) / page * page;
+}
+
+// A pooled block for `bytes`: the smallest that is big enough, else the largest (to be grown).
+bool takePooled(std::size_t bytes, void** block, std::size_t* mapped) {
+  Pool& p = pool();
+  std::lock_guard<std::mutex> lock(p.mutex);
+  if (p.blocks.empty()) return false;
+  auto best = p.blocks.end();
+  for (auto it = p.blocks.begin(); it != p.blocks.end(); ++it) {
+    if (it->second >= bytes && (best == p.blocks.end() || it->second < best->second)) best = it;
+  }
+  if (best == p.blocks.end()) {
+    best = std::max_element(p.blocks.begin(), p.blocks.end(),
+                            [](const auto& a, const auto& b) { return a.second < b.second; });
+  }
+  *block = best->first;
+  *mapped = best->second;
+  p.blocks.erase(best);
+  return true;
+}
+
+}  // namespace
+
+void* mapLargeBlock(std::size_t bytes, std::size_t* mapped) {
+  bytes = roundToPages(bytes);
+  void* block = nullptr;
+  std::size_t size = 0;
+  if (takePooled(bytes, &block, &size)) {
+    if (size >= bytes) {
+      *mapped = size;
+      return block;
+    }
+    try {
+      void* grown = growLargeBlock(block, bytes, &size);
+      *mapped = size;
+      return grown;
+    } catch (const std::bad_alloc&) {
+      releaseLargeBlock(block, size);
+      throw;
+    }
+  }
+  block = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (block == MAP_FAILED) throw std::bad_alloc();
+  *mapped = bytes;
+  return block;
+}
+
+void* growLargeBlock(void* block, std::size_t bytes, std::size_t* mapped) {
+  bytes = roundToPages(bytes);
+  if (bytes <= *mapped) return block;
+  void* moved = mremap(block, *mapped, bytes, MREMAP_MAYMOVE);
+  if (moved == MAP_FAILED) throw std::bad_alloc();
+  *mapped = bytes;
+  return moved;
+}
+
+void releaseLargeBlock(void* block, std::size_t mapped) noexcept {
+  if (block == nullptr) return;
+  if (g_reuse.load(std::memory_order_relaxed)) {
+    Pool& p = pool();
+    std::lock_guard<std::mutex> lock(p.mutex);
+    try {
+      p.blocks.emplace_back(block, mapped);
+      return;
+    } catch (const std::bad_alloc&) {
+      // no room to remember it: unmap it instead
+    }
+  }
+  munmap(block, mapped);
+}
+
+std::size_t pooledLargeBlockBytes() {
+  Pool& p = pool();
+  std::lock_guard<std::mutex> lock(p.mutex);
+  std::size_t total = 0;
+  for (const auto& b : p.blocks) total += b.second;
+  return total;
+}
+
+}  // namespace detail
+
+void setReuseFreedSearchMemory(bool reuse) {
+  detail::g_reuse.store(reuse, std::memory_order_relaxed);
+  if (reuse) return;
+  // Turning reuse off also returns what the pool holds.
+  detail::Pool& p = detail::pool();
+  std::lock_guard<std::mutex> lock(p.mutex);
+  for (const auto& b : p.blocks) munmap(b.first, b.second);
+  p.blocks.clear();
+}
+
+}  // namespace amha
