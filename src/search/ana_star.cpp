@@ -88,19 +88,26 @@ SearchResult AnaStar::run(SearchProblem& problem, const SearchLimits& limits,
       }
       break;
     }
-    // Re-order OPEN for the new G and prune states that cannot lead to a better solution.
-    std::vector<StateId> prune;
-    for (const auto& e : open_.entries()) {
-      if (g_[e.id] + static_cast<Cost>(h0_[e.id]) >= G_) prune.push_back(e.id);
-    }
-    for (StateId s : prune) open_.remove(s);
-    open_.rebuild();
+    // Prune the states that cannot lead to a better solution and re-order OPEN for the new G,
+    // in one pass over the entries and a heapify (OPEN can hold tens of millions: the clock is
+    // checked along the way). An entry's key holds its state's current g: every state whose g
+    // falls while g + h < G is pushed again, and G only falls.
     // Lower bound for the certificate: every state that could still improve on G is in OPEN
     // (ANA* re-opens any state whose g drops while g + h < G), so min over OPEN of g + h is at
     // most the optimal cost unless G is already optimal.
     Cost lb = kInfiniteCost;
-    for (const auto& e : open_.entries()) lb = std::min(lb, g_[e.id] + static_cast<Cost>(h0_[e.id]));
-    report(E_, lb, iteration++, 1.0, 1.0);
+    open_.removeIf([&](const auto& e) {
+      const Cost f = e.key.g + static_cast<Cost>(e.key.h);
+      if (f >= G_) return true;
+      lb = std::min(lb, f);
+      return false;
+    });
+    const bool ordered = open_.rebuild([this](std::size_t) { return slowLimitCheck(); });
+    report(E_, lb, iteration++, 1.0, 1.0);  // lb is complete even if the heapify stopped
+    if (!ordered) {
+      status = stop_;
+      break;
+    }
     if (open_.empty()) {
       status = SearchStatus::kProvenOptimal;
       break;

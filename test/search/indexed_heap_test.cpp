@@ -1,4 +1,5 @@
-// The indexed heap against std::set under random pushes, key changes, removals and rebuilds.
+// The indexed heap against std::set under random pushes, key changes, removals, and bulk
+// removals with rebuilds; a rebuild that is told to stop gives up and leaves a clearable heap.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -37,10 +38,13 @@ TEST(IndexedHeap, MatchesReferenceUnderRandomOperations) {
       ref.erase({key[popped], popped});
       key[popped] = -1;
     } else {
-      // Re-key everything with a new function and rebuild.
-      heap.rekey([&](StateId s) { return key[s] = 1000 - key[s]; });
+      // Drop every key above a threshold in one pass and rebuild.
+      const double cut = static_cast<double>(rng() % 1000);
+      heap.removeIf([&](const IndexedHeap<double>::Entry& e) { return e.key > cut; });
+      heap.rebuild();
       ref.clear();
       for (StateId s = 0; s < n; ++s) {
+        if (key[s] > cut) key[s] = -1;
         if (key[s] >= 0) ref.insert({key[s], s});
       }
     }
@@ -51,6 +55,32 @@ TEST(IndexedHeap, MatchesReferenceUnderRandomOperations) {
     if (!ref.empty()) {
       ASSERT_EQ(heap.top().key, ref.begin()->first);
     }
+  }
+}
+
+TEST(IndexedHeap, RebuildStopsWhenToldAndTheHeapCanThenBeCleared) {
+  IndexedHeap<double> heap;
+  const StateId n = 300000;  // several 2^16-entry stretches
+  heap.reserveIds(n);
+  for (StateId s = 0; s < n; ++s) heap.push(s, static_cast<double>((s * 7919u) % n));
+  heap.removeIf([](const IndexedHeap<double>::Entry& e) { return e.id % 3 == 0; });
+  std::size_t asked = 0;
+  EXPECT_FALSE(heap.rebuild([&](std::size_t) { return ++asked == 2; }));
+  EXPECT_EQ(asked, 2u);
+  heap.clear();
+  EXPECT_TRUE(heap.empty());
+  for (StateId s = 0; s < n; ++s) ASSERT_FALSE(heap.contains(s)) << s;
+
+  for (StateId s = 0; s < n; ++s) heap.push(s, static_cast<double>((s * 7919u) % n));
+  heap.removeIf([](const IndexedHeap<double>::Entry& e) { return e.id % 3 == 0; });
+  EXPECT_TRUE(heap.rebuild([](std::size_t) { return false; }));
+  EXPECT_EQ(heap.size(), n - (n + 2) / 3);
+  double last = -1;
+  while (!heap.empty()) {
+    const double k = heap.top().key;
+    ASSERT_GE(k, last);
+    last = k;
+    ASSERT_NE(heap.pop() % 3, 0u);
   }
 }
 

@@ -6,6 +6,8 @@
 #include <malloc.h>
 
 #include <cstdint>
+#include <thread>
+#include <vector>
 #include <utility>
 
 #include "../../src/search/realloc_vector.h"
@@ -114,6 +116,28 @@ TEST(ReallocVector, LargeBlocksAreReusedOnlyWhenAskedAndKeepTheirContents) {
   }
   EXPECT_GE(pooledLargeBlockBytes(), 4 * kBig * sizeof(std::uint64_t));
   setReuseFreedSearchMemory(false);  // also returns the pool
+  EXPECT_EQ(pooledLargeBlockBytes(), 0u);
+}
+
+TEST(ReallocVector, PoolServesConcurrentSearchesEachTheirOwnBlocks) {
+  // Two threads (as in `amha tiles --jobs 2`) take blocks from the pool and give them back.
+  setReuseFreedSearchMemory(true);
+  auto work = [](std::uint64_t seed, bool* ok) {
+    *ok = true;
+    for (int round = 0; round < 20; ++round) {
+      ReallocVector<std::uint64_t> v;
+      const std::size_t n = (kLargeBlockBytes / sizeof(std::uint64_t)) * (1 + round % 3);
+      for (std::size_t i = 0; i < n; ++i) v.push_back(seed ^ i);
+      for (std::size_t i = 0; i < n; ++i) *ok = *ok && v[i] == (seed ^ i);
+    }
+  };
+  bool ok1 = false, ok2 = false;
+  std::thread t1(work, 0x1234u, &ok1), t2(work, 0xABCD0000u, &ok2);
+  t1.join();
+  t2.join();
+  EXPECT_TRUE(ok1);
+  EXPECT_TRUE(ok2);
+  setReuseFreedSearchMemory(false);
   EXPECT_EQ(pooledLargeBlockBytes(), 0u);
 }
 

@@ -1,5 +1,6 @@
 // Indexed binary min-heap over dense state ids: O(log n) insert / decrease / increase / remove,
-// O(1) membership, and a bulk rebuild (O(n) heapify) for re-keying between anytime iterations.
+// O(1) membership, and bulk removal and rebuild (O(n) heapify) for ANA*'s prune at each new
+// incumbent.
 // ANA* uses it: its keys change with every new incumbent. (A-MHA*'s queues are lazy_queue.h.)
 #pragma once
 
@@ -83,18 +84,40 @@ class IndexedHeap {
     heap_.clear();
   }
 
-  /// Sets every key to key_of(id) and restores heap order in O(n).
-  template <typename KeyOf>
-  void rekey(KeyOf&& key_of) {
-    for (Entry& e : heap_) e.key = key_of(e.id);
-    rebuild();
+  /// Removes, in one pass, every entry for which drop(entry) is true. The others stay, but
+  /// out of order and with stale positions: call rebuild() before any other operation.
+  template <typename Drop>
+  void removeIf(Drop&& drop) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < heap_.size(); ++i) {
+      if (drop(heap_[i])) {
+        pos(heap_[i].id) = kAbsent;
+      } else {
+        heap_[kept++] = heap_[i];
+      }
+    }
+    heap_.resize(kept);
   }
 
   /// Restores heap order (Floyd's heapify) after removals or key changes made in bulk.
   void rebuild() {
+    rebuild([](std::size_t) { return false; });
+  }
+  /// The same, asking stop(k) every 2^16 entries whether to give up (a heap of tens of
+  /// millions takes long): false if it did. The heap then holds its entries out of order and
+  /// may only be cleared.
+  template <typename Stop>
+  bool rebuild(Stop&& stop) {
     const std::size_t n = heap_.size();
-    for (std::size_t i = 0; i < n; ++i) pos(heap_[i].id) = static_cast<std::uint32_t>(i);
-    for (std::size_t i = n / 2; i-- > 0;) siftDown(static_cast<std::uint32_t>(i));
+    for (std::size_t i = 0; i < n; ++i) {
+      if ((i & 0xFFFFu) == 0 && i > 0 && stop(i)) return false;
+      pos(heap_[i].id) = static_cast<std::uint32_t>(i);
+    }
+    for (std::size_t i = n / 2; i-- > 0;) {
+      if ((i & 0xFFFFu) == 0 && i > 0 && stop(i)) return false;
+      siftDown(static_cast<std::uint32_t>(i));
+    }
+    return true;
   }
 
   std::size_t memoryBytes() const {
