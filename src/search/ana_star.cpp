@@ -88,9 +88,9 @@ SearchResult AnaStar::run(SearchProblem& problem, const SearchLimits& limits,
       }
       break;
     }
-    // Prune the states that cannot lead to a better solution and re-order OPEN for the new G,
-    // in one pass over the entries and a heapify (OPEN can hold tens of millions: the clock is
-    // checked along the way). An entry's key holds its state's current g: every state whose g
+    // Prune the states that cannot lead to a better solution and re-order OPEN for the new G:
+    // one sequential pass over the entries, then a heapify, which checks the clock (OPEN can
+    // hold tens of millions). An entry's key holds its state's current g: every state whose g
     // falls while g + h < G is pushed again, and G only falls.
     // Lower bound for the certificate: every state that could still improve on G is in OPEN
     // (ANA* re-opens any state whose g drops while g + h < G), so min over OPEN of g + h is at
