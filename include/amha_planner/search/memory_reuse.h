@@ -7,8 +7,9 @@ namespace amha {
 /// With reuse on, a search's large arrays are not unmapped when it ends but kept, and the next
 /// search takes them over with their pages already faulted in, as a long-lived planner that
 /// keeps its buffers would. Benchmarks running thousands of searches use it (otherwise every
-/// run pays the kernel's zeroing of its whole state space again: about a fifth of the CPU time
-/// on Korf's 15-puzzles). The price: resident memory stays at the largest search's peak.
+/// run pays the kernel's zeroing of its whole state space again: about 13 % of the CPU time on
+/// Korf's 15-puzzles, docs/results/tiles.md). The price: resident memory stays at the largest
+/// search's peak.
 /// Off by default. Thread-safe; affects arrays freed after the call.
 void setReuseFreedSearchMemory(bool reuse);
 
