@@ -7,9 +7,9 @@
 namespace amha {
 namespace cli {
 
-void keepFreedMemoryMapped() {
+void keepFreedMemoryMapped(std::size_t max_pooled_bytes) {
   // The search's large arrays have their own mappings: keep them in the search's pool.
-  setReuseFreedSearchMemory(true);
+  setReuseFreedSearchMemory(true, max_pooled_bytes);
   // Everything else (e.g. the tile domain's boards and table): blocks above M_MMAP_THRESHOLD
   // (at most 32 MiB) would be mmap'ed and unmapped on free; with M_MMAP_MAX = 0 they come
   // from the heap, whose freed top is never trimmed. None of the large ones grows by realloc,

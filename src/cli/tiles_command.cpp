@@ -165,7 +165,6 @@ int runTiles(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
-  if (!o.fresh_memory) keepFreedMemoryMapped();
 
   std::vector<Algorithm> algorithms;
   {
@@ -218,6 +217,9 @@ int runTiles(int argc, char** argv) {
   const auto weights = tiles::randomTermWeights(static_cast<std::size_t>(o.heuristics), o.heuristic_seed);
   const std::size_t per_run_bytes =
       static_cast<std::size_t>(o.memory_limit_gb * double(1ull << 30) / o.jobs);
+  // Between runs the pool keeps at most one run's cap: resident memory stays below
+  // --memory-limit-gb plus that.
+  if (!o.fresh_memory) keepFreedMemoryMapped(per_run_bytes);
 
   // Tasks in instance-major order: instance i runs all algorithms before instance i + 1.
   const std::size_t n_tasks = instances.size() * algorithms.size();

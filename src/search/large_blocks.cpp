@@ -30,9 +30,13 @@ namespace {
 
 std::atomic<bool> g_reuse{false};
 
+std::atomic<std::size_t> g_max_pooled{0};
+std::atomic<std::size_t> g_live{0};  // bytes mapped for blocks in use (not pooled)
+
 struct Pool {
   std::mutex mutex;
   std::vector<std::pair<void*, std::size_t>> blocks;  // (mapping, size)
+  std::size_t pooled = 0;                              // their sizes' sum
 };
 
 Pool& pool() {
@@ -61,6 +65,7 @@ bool takePooled(std::size_t bytes, void** block, std::size_t* mapped) {
   }
   *block = best->first;
   *mapped = best->second;
+  p.pooled -= best->second;
   p.blocks.erase(best);
   return true;
 }
@@ -72,7 +77,14 @@ void* mapLargeBlock(std::size_t bytes, std::size_t* mapped) {
   void* block = nullptr;
   std::size_t size = 0;
   if (takePooled(bytes, &block, &size)) {
-    if (size >= bytes) {
+    if (size > bytes) {
+      // Unmap the tail: the caller's memory cap counts `bytes`, and a small array must not
+      // keep a big array's resident pages (that let `amha tiles` reach 3 times its cap).
+      munmap(static_cast<char*>(block) + bytes, size - bytes);
+      size = bytes;
+    }
+    g_live += size;
+    if (size == bytes) {
       *mapped = size;
       return block;
     }
@@ -87,6 +99,7 @@ void* mapLargeBlock(std::size_t bytes, std::size_t* mapped) {
   }
   block = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (block == MAP_FAILED) throw std::bad_alloc();
+  g_live += bytes;
   *mapped = bytes;
   return block;
 }
@@ -106,20 +119,25 @@ void* growLargeBlock(void* block, std::size_t bytes, std::size_t* mapped) {
   void* moved = mremap(block, *mapped, bytes, MREMAP_MAYMOVE);
   if (moved == MAP_FAILED) throw std::bad_alloc();
 #endif
+  g_live += bytes - *mapped;
   *mapped = bytes;
   return moved;
 }
 
 void releaseLargeBlock(void* block, std::size_t mapped) noexcept {
   if (block == nullptr) return;
+  g_live -= mapped;
   if (g_reuse.load(std::memory_order_relaxed)) {
     Pool& p = pool();
     std::lock_guard<std::mutex> lock(p.mutex);
-    try {
-      p.blocks.emplace_back(block, mapped);
-      return;
-    } catch (const std::bad_alloc&) {
-      // no room to remember it: unmap it instead
+    if (p.pooled + mapped <= g_max_pooled.load(std::memory_order_relaxed)) {
+      try {
+        p.blocks.emplace_back(block, mapped);
+        p.pooled += mapped;
+        return;
+      } catch (const std::bad_alloc&) {
+        // no room to remember it: unmap it instead
+      }
     }
   }
   munmap(block, mapped);
@@ -128,21 +146,25 @@ void releaseLargeBlock(void* block, std::size_t mapped) noexcept {
 std::size_t pooledLargeBlockBytes() {
   Pool& p = pool();
   std::lock_guard<std::mutex> lock(p.mutex);
-  std::size_t total = 0;
-  for (const auto& b : p.blocks) total += b.second;
-  return total;
+  return p.pooled;
 }
+
+std::size_t liveLargeBlockBytes() { return g_live.load(); }
 
 }  // namespace detail
 
-void setReuseFreedSearchMemory(bool reuse) {
+void setReuseFreedSearchMemory(bool reuse, std::size_t max_pooled_bytes) {
+  detail::g_max_pooled.store(max_pooled_bytes, std::memory_order_relaxed);
   detail::g_reuse.store(reuse, std::memory_order_relaxed);
-  if (reuse) return;
-  // Turning reuse off also returns what the pool holds.
+  // Turning reuse off returns what the pool holds; a lower limit returns the excess.
   detail::Pool& p = detail::pool();
   std::lock_guard<std::mutex> lock(p.mutex);
-  for (const auto& b : p.blocks) munmap(b.first, b.second);
-  p.blocks.clear();
+  const std::size_t keep = reuse ? max_pooled_bytes : 0;
+  while (p.pooled > keep) {
+    munmap(p.blocks.back().first, p.blocks.back().second);
+    p.pooled -= p.blocks.back().second;
+    p.blocks.pop_back();
+  }
 }
 
 }  // namespace amha

@@ -12,8 +12,8 @@ namespace detail {
 /// Blocks at least this big are mappings; smaller ones stay with malloc (copying them is cheap).
 constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
 
-/// A mapping of at least `bytes` (page-aligned); *mapped receives its real size, which is
-/// larger when a pooled block is reused. Its contents are unspecified. Throws std::bad_alloc.
+/// A mapping of `bytes` rounded up to whole pages; *mapped receives that size. A pooled block
+/// is cut or grown to it. Its contents are unspecified. Throws std::bad_alloc.
 void* mapLargeBlock(std::size_t bytes, std::size_t* mapped);
 
 /// Grows a mapping of `mapped` bytes to at least `bytes`, keeping its contents; may move it.
@@ -25,6 +25,9 @@ void releaseLargeBlock(void* block, std::size_t mapped) noexcept;
 
 /// Bytes held in the pool (for tests).
 std::size_t pooledLargeBlockBytes();
+
+/// Bytes mapped for blocks in use, i.e. not pooled (for tests).
+std::size_t liveLargeBlockBytes();
 
 }  // namespace detail
 }  // namespace amha

@@ -119,6 +119,44 @@ TEST(ReallocVector, LargeBlocksAreReusedOnlyWhenAskedAndKeepTheirContents) {
   EXPECT_EQ(pooledLargeBlockBytes(), 0u);
 }
 
+TEST(ReallocVector, ReusedBlocksKeepOnlyWhatTheyNeedAndThePoolIsBounded) {
+  // A small array taking a big pooled block gives the rest back: otherwise it keeps resident
+  // pages its memory cap does not count (`amha tiles` once grew to 3 times its cap that way).
+  constexpr std::size_t kMiB = std::size_t{1} << 20;
+  setReuseFreedSearchMemory(true);
+  const std::size_t live0 = liveLargeBlockBytes();
+  {
+    ReallocVector<char> big;
+    big.resize(64 * kMiB);
+    EXPECT_EQ(liveLargeBlockBytes(), live0 + 64 * kMiB);
+  }
+  EXPECT_EQ(pooledLargeBlockBytes(), 64 * kMiB);
+  EXPECT_EQ(liveLargeBlockBytes(), live0);
+  {
+    ReallocVector<char> small;
+    small.resize(8 * kMiB);
+    EXPECT_EQ(pooledLargeBlockBytes(), 0u);
+    EXPECT_EQ(liveLargeBlockBytes(), live0 + 8 * kMiB) << "the other 56 MiB must be unmapped";
+    small.resize(16 * kMiB);  // grows by remapping
+    EXPECT_EQ(liveLargeBlockBytes(), live0 + 16 * kMiB);
+  }
+  EXPECT_EQ(pooledLargeBlockBytes(), 16 * kMiB);
+
+  // The pool keeps at most its limit; lowering the limit unmaps the excess.
+  setReuseFreedSearchMemory(true, 20 * kMiB);
+  {
+    ReallocVector<char> a, b, c;
+    a.resize(8 * kMiB);  // a cut of the pooled block
+    b.resize(8 * kMiB);
+    c.resize(8 * kMiB);
+  }
+  EXPECT_EQ(pooledLargeBlockBytes(), 16 * kMiB) << "a third 8 MiB block would pass 20 MiB";
+  setReuseFreedSearchMemory(true, 4 * kMiB);
+  EXPECT_EQ(pooledLargeBlockBytes(), 0u);
+  setReuseFreedSearchMemory(false);
+  EXPECT_EQ(liveLargeBlockBytes(), live0);
+}
+
 TEST(ReallocVector, PoolServesConcurrentSearchesEachTheirOwnBlocks) {
   // Two threads (as in `amha tiles --jobs 2`) take blocks from the pool and give them back.
   setReuseFreedSearchMemory(true);
