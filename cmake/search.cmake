@@ -3,6 +3,7 @@ add_library(amha_search
   src/search/planner_config.cpp
   src/search/large_blocks.cpp
   src/search/search_base.cpp
+  src/search/dts_schedule.cpp
   src/search/mha_engine.cpp
   src/search/ana_star.cpp
   src/search/planner_factory.cpp
@@ -19,6 +20,7 @@ amha_add_gtest(amha_search_tests
     test/search/optimality_test.cpp
     test/search/limits_test.cpp
     test/search/monotone_cost_test.cpp
+    test/search/dts_schedule_test.cpp
   LIBS amha_search)
 
 if(AMHA_FUZZ)

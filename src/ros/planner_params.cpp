@@ -173,6 +173,10 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.dw1 = getDouble(pnh, "dw1", -1, 0.0, 1e6);
   p.dw2 = getDouble(pnh, "dw2", -1, 0.0, 1e6);
   p.eps = getDouble(pnh, "eps", -1, 1.0, 1e6);
+  const std::string schedule = getString(pnh, "queue_schedule", amha::scheduleName(p.queue_schedule));
+  if (!amha::parseSchedule(schedule, &p.queue_schedule)) {
+    bad(pnh, "queue_schedule", "unknown schedule '" + schedule + "' (rr, dts)");
+  }
   p.eps_decrement = getDouble(pnh, "eps_decrement", -1, 0.0, 1e6);
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
@@ -214,6 +218,7 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
       if (params.w2 >= 0) c.w2 = params.w2;
       if (params.dw1 >= 0) c.dw1 = params.dw1;
       if (params.dw2 >= 0) c.dw2 = params.dw2;
+      c.schedule = params.queue_schedule;
       if (w1 != 0.0) c.w1 = w1;
       if (w2 != 0.0) c.w2 = w2;
       break;

@@ -55,7 +55,12 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   small_keys_ = problem.smallIntegerKeys();
   resetQueues();
   iteration_ = 0;
-  round_robin_ = 0;
+  dts_ = opt_.schedule == QueueSchedule::kDts && nh_ > 1;
+  next_queue_ = 1;
+  if (dts_) {
+    schedule_.reset(nh_ - 1, opt_.schedule_seed);
+    next_queue_ = schedule_.pick();
+  }
 
   const StateId start = problem.start();
   const StateId goal = problem.goal();
@@ -71,7 +76,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     pushOpen(0, k0);
     for (std::size_t i = 1; i < nh_; ++i) {
       const QueueEntry ki = key(start, i);
-      if (admits(ki, k0.f)) pushOpen(i, ki);
+      if (admits(ki, k0.f) && pushOpen(i, ki) && dts_) schedule_.noteQueued(i, ki.h);
     }
   }
 
@@ -130,18 +135,21 @@ bool MhaEngine::improvePath() {
     if (limitHit()) return false;
     std::size_t q = 0;
     if (n_inad > 0) {
-      const std::size_t i = 1 + round_robin_;
-      round_robin_ = (round_robin_ + 1) % n_inad;
+      const std::size_t i = next_queue_;
       if (cleanTop(i) && open_[i].topKey() <= w2_ * min0) q = i;
     }
     const StateId s = open_[q].topId();
     open_[q].pop();
-    // The next round tests the tops of OPEN_0 and of the next OPEN_i against their records:
-    // start loading those now, while s is expanded (if expand() changes a top, the hint is
-    // merely wasted).
+    // Choose the next step's inadmissible queue now: the next round tests the tops of OPEN_0
+    // and of that queue against their records, so start loading those while s is expanded (if
+    // expand() changes a top, the hint is merely wasted). DTS thus draws before s's reward is
+    // known: its evidence is one expansion old.
+    if (n_inad > 0) next_queue_ = dts_ ? schedule_.pick() : next_queue_ % n_inad + 1;
     prefetchTopRecord(0);
-    if (n_inad > 0) prefetchTopRecord(1 + round_robin_);
+    if (n_inad > 0) prefetchTopRecord(next_queue_);
+    progress_ = false;
     expand(s, q);
+    if (dts_ && q > 0) schedule_.reward(q, progress_);
     flags(s) |= (q == 0) ? kClosedAnch : kClosedInad;
   }
 }
@@ -179,6 +187,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
       const QueueEntry ki = key(t, i);
       if (admits(ki, k0.f)) {
         if (!pushOpen(i, ki)) return;
+        if (dts_ && schedule_.noteQueued(i, ki.h) && i == queue) progress_ = true;
       } else {
         // A lower g can make the test fail; keep OPEN_i exactly the states that pass it.
         clearInOpen(t, i);
@@ -205,6 +214,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
     setInOpen(s, 0);
   }
   open_[0].restoreOrder();
+  if (dts_) schedule_.resetProgress();
   // "Copy all states from OPEN_0 to OPEN_i": we re-apply Expand's admission test
   // (key_i <= w2 * key_0, h_i finite). The paper leaves this open. The bound proof only needs
   // line 19's test, so either choice is correct; filtering keeps OPEN_i identical to what
@@ -218,6 +228,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
       if (admits(ki, key(s, 0).f)) {
         open_[i].appendUnordered(ki);
         setInOpen(s, i);
+        if (dts_) schedule_.noteQueued(i, ki.h);
       }
     }
     open_[i].restoreOrder();

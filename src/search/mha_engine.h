@@ -8,8 +8,9 @@
 #include <functional>
 #include <vector>
 
-#include "realloc_vector.h"
+#include "dts_schedule.h"
 #include "open_queue.h"
+#include "realloc_vector.h"
 #include "search_base.h"
 
 namespace amha {
@@ -22,6 +23,8 @@ struct MhaEngineOptions {
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
   bool check_invariants = false;
+  QueueSchedule schedule = QueueSchedule::kRoundRobin;
+  std::uint64_t schedule_seed = 1;
 };
 
 /// Hook for tests: called for every expansion with the state, the queue (0 = anchor) and the
@@ -152,7 +155,10 @@ class MhaEngine : public SearchBase {
   double w1_ = 1.0, w2_ = 1.0;
   bool small_keys_ = false;  // the problem allows bucket queues
   int iteration_ = 0;
-  std::size_t round_robin_ = 0;
+  std::size_t next_queue_ = 1;  // the inadmissible queue the next step tries (1..N)
+  bool dts_ = false;        // opt_.schedule == kDts and there are inadmissible queues
+  bool progress_ = false;   // DTS: the current expansion lowered its queue's smallest h
+  DtsSchedule schedule_;
 
   ReallocVector<std::uint32_t> rec_;  // the records
   ReallocVector<StateId> members_;    // OPEN_0 u INCONS, from collectOpen0AndIncons()

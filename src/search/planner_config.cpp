@@ -35,6 +35,21 @@ bool parseAlgorithm(const std::string& name, Algorithm* out) {
   return false;
 }
 
+const char* scheduleName(QueueSchedule s) {
+  return s == QueueSchedule::kDts ? "dts" : "rr";
+}
+
+bool parseSchedule(const std::string& name, QueueSchedule* out) {
+  if (name == "rr") {
+    *out = QueueSchedule::kRoundRobin;
+  } else if (name == "dts") {
+    *out = QueueSchedule::kDts;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 const char* statusName(SearchStatus s) {
   switch (s) {
     case SearchStatus::kProvenOptimal: return "proven_optimal";

@@ -52,6 +52,8 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
   detail::MhaEngineOptions o;
   o.stop_when_certified_optimal = c.stop_when_certified_optimal;
   o.check_invariants = c.check_invariants;
+  o.schedule = c.schedule;
+  o.schedule_seed = c.schedule_seed;
   o.dw1 = o.dw2 = 0.0;
   o.w1 = o.w2 = 1.0;
   o.anytime = false;

@@ -140,6 +140,10 @@ TEST(SearchConfigFor, AppliesParametersThenRequestOverrides) {
   EXPECT_DOUBLE_EQ(c.w1, 3.0);
   EXPECT_DOUBLE_EQ(c.w2, 2.0) << "the request's w2";
   EXPECT_DOUBLE_EQ(c.dw2, 0.25);
+  EXPECT_EQ(c.schedule, amha::QueueSchedule::kRoundRobin);
+  p.queue_schedule = amha::QueueSchedule::kDts;
+  ASSERT_TRUE(searchConfigFor(p, "mha", 0, 0, &c, &error)) << error;
+  EXPECT_EQ(c.schedule, amha::QueueSchedule::kDts);
   // ARA*: eps is w1; the request's w1 overrides it.
   p.eps = 4.0;
   ASSERT_TRUE(searchConfigFor(p, "ara", 0, 0, &c, &error)) << error;

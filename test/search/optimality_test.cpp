@@ -95,6 +95,22 @@ TEST_P(AllAlgorithms, RunsToOptimalWithoutCertifiedShortcut) {
   }
 }
 
+// The bound cannot depend on which inadmissible queue goes next: the same checks with DTS.
+TEST(DtsSchedule, SolutionsValidBoundedAndImproving) {
+  for (bool shortcut : {true, false}) {
+    for (auto& c : makeCases(shortcut ? 4 : 7)) {
+      for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar}) {
+        PlannerConfig config = defaultConfig(a);
+        config.schedule = QueueSchedule::kDts;
+        config.schedule_seed = 7;
+        config.stop_when_certified_optimal = shortcut;
+        config.check_invariants = true;
+        checkRun(c.graph, config, c.name + " dts");
+      }
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Search, AllAlgorithms,
                          ::testing::Values(Algorithm::kAmhaStar, Algorithm::kMhaStar,
                                            Algorithm::kAraStar, Algorithm::kAnaStar,
@@ -136,6 +152,7 @@ TEST(AmhaStar, NominalBoundHoldsWithMisleadingHeuristics) {
     config.w2 = 3.0;
     config.dw1 = 0.25;
     config.dw2 = 1.0;
+    config.schedule = seed % 2 ? QueueSchedule::kDts : QueueSchedule::kRoundRobin;
     const SearchResult r = makePlanner(config)->search(g, SearchLimits());
     for (const Solution& s : r.solutions) {
       EXPECT_LE(static_cast<double>(s.cost), s.w1 * s.w2 * static_cast<double>(optimal));
@@ -162,6 +179,7 @@ TEST(AmhaStar, AtMostTwoExpansionsPerStatePerImprovePath) {
       eo.anytime = algorithm == Algorithm::kAmhaStar;
       eo.max_inadmissible = 100;
       eo.stop_when_certified_optimal = false;
+      eo.schedule = seed % 3 == 0 ? QueueSchedule::kDts : QueueSchedule::kRoundRobin;
       detail::MhaEngine engine(eo);
       std::map<std::pair<int, StateId>, int> count;
       std::map<std::pair<int, StateId>, int> anchor_count;

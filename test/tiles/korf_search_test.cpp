@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
 
 #include "amha_planner/search/planner.h"
 #include "amha_planner/tiles/instances.h"
@@ -102,6 +103,34 @@ TEST(Korf100, AnytimeSolutionsReplayWithinTheirCertifiedBounds) {
     }
   }
   EXPECT_GT(solutions, 400u);
+}
+
+// The same with the DTS queue schedule: a different order of expansions, the same guarantees.
+TEST(Korf100, DtsScheduleSolutionsReplayWithinTheirCertifiedBounds) {
+  const auto inst = korf();
+  if (inst.empty()) GTEST_SKIP() << "shared data absent";
+  const auto weights = randomTermWeights(4, 1);
+  std::size_t solutions = 0;
+  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar}) {
+    PlannerConfig config = defaultConfig(a);
+    config.schedule = QueueSchedule::kDts;
+    auto planner = makePlanner(config);
+    for (const Instance& i : inst) {
+      auto p = TilesProblem::create(i.start, weights);
+      SearchLimits limits;
+      limits.max_expansions = 50000;
+      const SearchResult r = planner->search(*p, limits);
+      ASSERT_TRUE(r.hasSolution()) << algorithmName(a) << " (dts) on instance " << i.id;
+      Cost last = kInfiniteCost;
+      for (const Solution& s : r.solutions) {
+        checkSolution(*p, i, s, (std::string(algorithmName(a)) + " (dts)").c_str());
+        EXPECT_LE(s.cost, last);
+        last = s.cost;
+        ++solutions;
+      }
+    }
+  }
+  EXPECT_GT(solutions, 200u);
 }
 
 }  // namespace

@@ -64,6 +64,24 @@ assert key(a) == key(b), 'searches differ between reused and fresh memory'
 assert sum(len(r['solutions']) for r in a['runs']) > 0
 " "$tmp/reuse.json" "$tmp/fresh.json" || fail "reused memory changed a search"
 
+# The DTS schedule: recorded in the JSON, reproducible (same seed, same searches), and its
+# solutions obey the same checks; A-MHA* still ends proven optimal on 8-puzzles.
+for k in 1 2; do
+  "$amha" tiles --size 3 --random 4 --seed 5 --algorithms amha,mha --schedule dts --quiet \
+    --max-expansions 200000 --time-limit 30 --json "$tmp/dts$k.json" > /dev/null || fail "dts run failed"
+done
+/usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+assert a['settings']['schedule'] == 'dts'
+key = lambda d: [(r['status'], r['expansions'], [(s['cost'], s['expansions']) for s in r['solutions']]) for r in d['runs']]
+assert key(a) == key(b), 'two DTS runs with the same seed differ'
+for r in a['runs']:
+    assert r['solutions'], r
+    if r['algorithm'] == 'amha':
+        assert r['status'] == 'proven_optimal', r['status']
+" "$tmp/dts1.json" "$tmp/dts2.json" || fail "DTS runs"
+
 expect() {  # expected exit code, arguments...
   local want=$1 got=0; shift
   "$amha" tiles "$@" --quiet > /dev/null 2> "$tmp/err" || got=$?
@@ -79,5 +97,6 @@ expect 2 --size 4 --walk 30
 expect 2 --size 4 --random 3 --algorithms amha,dijkstra
 expect 2 --size 4 --random 3 --w1 0.5
 expect 2 --size 10 --random 3
+expect 2 --size 4 --random 3 --schedule fifo
 expect 9 --size 3 --random 1 --time-limit 1 --json "$tmp/no/such/dir/out.json"
 echo "tiles CLI: all checks passed"

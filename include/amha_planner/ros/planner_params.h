@@ -21,6 +21,8 @@ struct PlannerParams {
   /// Per-algorithm weights: A-MHA*/MHA* use w1, w2, dw1, dw2; ARA* uses eps and
   /// eps_decrement; weighted A* uses eps. A value < 0 means "the algorithm's preset".
   double w1 = -1, w2 = -1, dw1 = -1, dw2 = -1, eps = -1, eps_decrement = -1;
+  /// A-MHA*/MHA*: which inadmissible queue goes next (round robin, as in the paper, or DTS).
+  amha::QueueSchedule queue_schedule = amha::QueueSchedule::kRoundRobin;
 
   double default_time_budget = 5.0;   ///< seconds, when a request gives 0
   double max_memory_mb = 2048.0;      ///< search + lattice state memory cap per request

@@ -22,6 +22,18 @@ const char* algorithmName(Algorithm a);
 /// Parses the names above; returns false for anything else.
 bool parseAlgorithm(const std::string& name, Algorithm* out);
 
+/// Which inadmissible queue A-MHA*/MHA* tries next.
+///  - kRoundRobin: 1, 2, ..., N, 1, ... (the paper's Algorithm 1);
+///  - kDts: Dynamic Thompson Sampling (Phillips et al., IJCAI 2015): each queue is an arm of a
+///    bandit whose reward is "this expansion lowered the smallest h_i ever queued in OPEN_i";
+///    the next queue is the one with the largest draw from its Beta posterior. Queues that
+///    make progress get more expansions. The bound w1*w2 does not depend on the order (the
+///    anchor test of line 19 is unchanged), only how soon solutions come.
+enum class QueueSchedule { kRoundRobin, kDts };
+/// "rr", "dts".
+const char* scheduleName(QueueSchedule s);
+bool parseSchedule(const std::string& name, QueueSchedule* out);
+
 enum class SearchStatus {
   kProvenOptimal,   ///< the last solution is optimal (bound 1 reached or certified)
   kBoundReached,    ///< a one-shot algorithm (MHA*, weighted A*) met its requested bound
@@ -55,6 +67,10 @@ struct PlannerConfig {
   double dw2 = 0.5;  ///< decrement of w2 per iteration
   /// Use at most this many inadmissible heuristics of the problem (all by default).
   std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
+  /// Order in which the inadmissible queues are tried (A-MHA*, MHA*).
+  QueueSchedule schedule = QueueSchedule::kRoundRobin;
+  /// Seed of the DTS draws: a search is reproducible from its inputs and this seed.
+  std::uint64_t schedule_seed = 1;
   /// Stop as soon as the certified bound proves the current solution optimal, instead of
   /// running the remaining iterations down to w = 1.
   bool stop_when_certified_optimal = true;

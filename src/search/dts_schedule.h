@@ -1,0 +1,55 @@
+// Dynamic Thompson Sampling over the inadmissible queues of MHA* (Phillips, Narayanan, Aine,
+// Likhachev: "Efficient Search with an Ensemble of Heuristics", IJCAI 2015). Each queue is an
+// arm with a Beta(alpha, beta) belief that an expansion from it makes progress; the next queue
+// is the arm with the largest draw. "Dynamic": the evidence (successes + failures) is capped at
+// C by scaling both down, so old evidence fades and a queue that stops making progress loses its
+// share quickly. Both parameters keep the uniform prior's 1, so no arm's draws collapse to 0.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "amha_planner/search/types.h"
+
+namespace amha {
+namespace detail {
+
+class DtsSchedule {
+ public:
+  /// Arms 1..n (0, the anchor, is never drawn); uniform Beta(1, 1) beliefs.
+  void reset(std::size_t n, std::uint64_t seed);
+  /// Forgets the smallest h seen per queue (a new iteration rebuilds the queues).
+  void resetProgress();
+  /// The arm with the largest Beta draw.
+  std::size_t pick();
+  /// OPEN_i received a state with heuristic h; true if that is the smallest h_i so far.
+  bool noteQueued(std::size_t i, HeuristicValue h) {
+    if (h >= best_h_[i]) return false;
+    best_h_[i] = h;
+    return true;
+  }
+  /// An expansion from arm i made progress (or not).
+  void reward(std::size_t i, bool progress);
+
+  static constexpr double kWindow = 10.0;  // C: the cap on the evidence, alpha + beta - 2
+
+ private:
+  /// xoshiro256**: fast, and a valid engine for Boost's distributions.
+  struct Engine {
+    using result_type = std::uint64_t;
+    static constexpr result_type min() { return 0; }
+    static constexpr result_type max() { return ~result_type{0}; }
+    result_type operator()();
+    std::uint64_t s[4] = {1, 2, 3, 4};
+  };
+  double uniform();            // in (0, 1)
+  double gamma(double shape);  // Gamma(shape, 1), shape >= 1
+
+  std::vector<double> alpha_, beta_;
+  std::vector<HeuristicValue> best_h_;
+  Engine engine_;
+};
+
+}  // namespace detail
+}  // namespace amha
