@@ -14,6 +14,8 @@ std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); 
 void DtsSchedule::reset(std::size_t n, std::uint64_t seed) {
   alpha_.assign(n + 1, 1.0);
   beta_.assign(n + 1, 1.0);
+  alpha_shape_.assign(n + 1, GammaShape());
+  beta_shape_.assign(n + 1, GammaShape());
   best_h_.assign(n + 1, kInfiniteHeuristic);
   // splitmix64 spreads any seed (0 included) over the xoshiro state.
   std::uint64_t z = seed;
@@ -31,14 +33,16 @@ void DtsSchedule::resetProgress() {
 }
 
 std::size_t DtsSchedule::pick() {
+  // The draw of arm i is x_i / (x_i + y_i); compared by cross-multiplying, without dividing.
   std::size_t best = 1;
-  double best_draw = -1.0;
+  double best_x = 0.0, best_sum = 1.0;
   for (std::size_t i = 1; i < alpha_.size(); ++i) {
-    const double x = gamma(alpha_[i]);
-    const double draw = x / (x + gamma(beta_[i]));
-    if (draw > best_draw) {
-      best_draw = draw;
+    const double x = gamma(alpha_shape_[i]);
+    const double sum = x + gamma(beta_shape_[i]);
+    if (i == 1 || x * best_sum > best_x * sum) {
       best = i;
+      best_x = x;
+      best_sum = sum;
     }
   }
   return best;
@@ -57,6 +61,8 @@ void DtsSchedule::reward(std::size_t i, bool progress) {
   }
   alpha_[i] = 1.0 + a;
   beta_[i] = 1.0 + b;
+  alpha_shape_[i].set(alpha_[i]);
+  beta_shape_[i].set(beta_[i]);
 }
 
 DtsSchedule::Engine::result_type DtsSchedule::Engine::operator()() {
@@ -75,13 +81,12 @@ double DtsSchedule::uniform() {
   return (static_cast<double>(engine_() >> 11) + 0.5) * (1.0 / 9007199254740992.0);
 }
 
-double DtsSchedule::gamma(double shape) {  // Marsaglia and Tsang (2000); shape >= 1 here
+double DtsSchedule::gamma(const GammaShape& shape) {  // Marsaglia and Tsang (2000), shape >= 1
   // Boost's normal distribution is a ziggurat: a table look-up, rarely a logarithm. (The polar
   // method's logarithm per two draws made DTS a third of the search's time on the 15-puzzle.)
   boost::random::normal_distribution<double> normal;
 
-  const double d = shape - 1.0 / 3.0;
-  const double c = 1.0 / std::sqrt(9.0 * d);
+  const double d = shape.d, c = shape.c;
   for (;;) {
     double x, v;
     do {

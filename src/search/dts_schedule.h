@@ -6,6 +6,7 @@
 // share quickly. Both parameters keep the uniform prior's 1, so no arm's draws collapse to 0.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -43,10 +44,20 @@ class DtsSchedule {
     result_type operator()();
     std::uint64_t s[4] = {1, 2, 3, 4};
   };
-  double uniform();            // in (0, 1)
-  double gamma(double shape);  // Gamma(shape, 1), shape >= 1
+  /// Marsaglia and Tsang's constants for one shape, computed when the shape changes rather
+  /// than at every draw (a square root and a division each).
+  struct GammaShape {
+    double d = 2.0 / 3.0, c = 1.0 / std::sqrt(6.0);
+    void set(double shape) {
+      d = shape - 1.0 / 3.0;
+      c = 1.0 / std::sqrt(9.0 * d);
+    }
+  };
+  double uniform();                      // in (0, 1)
+  double gamma(const GammaShape& shape);  // Gamma(shape, 1), shape >= 1
 
   std::vector<double> alpha_, beta_;
+  std::vector<GammaShape> alpha_shape_, beta_shape_;
   std::vector<HeuristicValue> best_h_;
   Engine engine_;
 };
