@@ -53,6 +53,7 @@ void AnaStar::resetArrays(std::size_t used) {
 SearchResult AnaStar::run(SearchProblem& problem, const SearchLimits& limits,
                           const SolutionCallback& on_solution) {
   begin(problem, limits, &on_solution);
+  const InterruptScope interrupt_scope(*this);
   G_ = kInfiniteCost;
   E_ = std::numeric_limits<double>::infinity();
   auto gen = [&](StateId s) {

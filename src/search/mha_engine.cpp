@@ -50,6 +50,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     used_ = 0;
   }
   begin(problem, limits, &on_solution);
+  const InterruptScope interrupt_scope(*this);
   w1_ = opt_.w1;
   w2_ = opt_.w2;
   small_keys_ = problem.smallIntegerKeys();

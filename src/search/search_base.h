@@ -39,6 +39,22 @@ class SearchBase {
     return false;
   }
   bool slowLimitCheck();
+
+  /// Lends the problem this search's limit check (SearchProblem::setInterruptCheck) while it
+  /// lives: every run() holds one from begin() on, so that no exit leaves the problem holding
+  /// a check into a search that has returned.
+  class InterruptScope {
+   public:
+    explicit InterruptScope(SearchBase& search) : problem_(*search.problem_) {
+      problem_.setInterruptCheck([&search] { return search.slowLimitCheck(); });
+    }
+    ~InterruptScope() { problem_.setInterruptCheck({}); }
+    InterruptScope(const InterruptScope&) = delete;
+    InterruptScope& operator=(const InterruptScope&) = delete;
+
+   private:
+    SearchProblem& problem_;
+  };
   bool stopWith(SearchStatus s) {
     stop_ = s;
     return true;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 
@@ -278,19 +279,22 @@ class TilesSpace final : public TilesProblem {
     return insertAt(slot, h, w, packInfo(t.md, t.lc / 2, t.mt, blankPosition(b)), kNoFrom);
   }
 
-  // Table slots: the low shift_ bits hold the id (ids stay below 0.7 * capacity = 0.7 *
+  // Table slots: the low shift_ bits hold the id (ids stay below 0.9 * capacity = 0.9 *
   // 2^shift_), the high 32 - shift_ bits a tag taken from the top of the hash, so that probes
   // past other states rarely read the arena. All ones (kEmpty) is never a stored value.
   void setTableSize(int shift) {
-    if (shift > 31) throw std::length_error("sliding tiles: more than 1.5 billion states");
+    setShift(shift);
+    slots_.assign(std::size_t{1} << shift, kEmpty);
+  }
+  void setShift(int shift) {
     shift_ = shift;
     mask_ = (std::size_t{1} << shift) - 1;
     id_mask_ = static_cast<std::uint32_t>(mask_);
-    slots_.assign(std::size_t{1} << shift, kEmpty);
   }
-  std::uint32_t tagOf(std::uint64_t h) const {
-    return static_cast<std::uint32_t>(h >> (32 + shift_)) << shift_;
+  static std::uint32_t tagOf(std::uint64_t h, int shift) {
+    return static_cast<std::uint32_t>(h >> (32 + shift)) << shift;
   }
+  std::uint32_t tagOf(std::uint64_t h) const { return tagOf(h, shift_); }
   // The id of board w (hash h), or kEmpty and the free slot where it belongs.
   StateId probe(const std::uint64_t* w, std::uint64_t h, std::size_t* slot_out) const {
     const std::uint32_t tag = tagOf(h);
@@ -324,12 +328,27 @@ class TilesSpace final : public TilesProblem {
     c.from[off] = from;
     ++count_;
     slots_[slot] = tagOf(h) | id;
-    if (count_ * 10 > slots_.size() * 7) growTable();
+    if (count_ * 10 > slots_.size() * 7 && count_ >= retry_growth_at_) {
+      // Past 90 % full, linear probing degrades fast: then the table grows whatever the search's
+      // limits say. Below, a rebuild the search's limits cut short is retried 1/32 later.
+      const bool must = count_ * 10 > slots_.size() * 9;
+      if (!growTable(!must)) retry_growth_at_ = count_ + slots_.size() / 32;
+    }
     return id;
   }
 
-  void growTable() {
-    setTableSize(shift_ + 1);
+  void setInterruptCheck(std::function<bool()> check) override { interrupted_ = std::move(check); }
+
+  // Doubles the table: false if the search's limit check stopped the rebuild (only when
+  // may_give_up), the old table then staying in place. At tens of millions of states a rebuild
+  // takes seconds (1.65 s at 47 M states), which a time limit or a cancel should not wait for.
+  bool growTable(bool may_give_up) {
+    auto give_up = [&] { return may_give_up && interrupted_ && interrupted_(); };
+    if (give_up()) return false;  // before allocating: the search is stopping anyway
+    const int shift = shift_ + 1;
+    if (shift > 31) throw std::length_error("sliding tiles: more than 1.5 billion states");
+    const std::size_t mask = (std::size_t{1} << shift) - 1;
+    std::vector<std::uint32_t> fresh(mask + 1, kEmpty);
     // Walk the arena in id order (sequential reads) rather than the old table (random reads).
     // The writes land at random: hash kAhead states ahead and prefetch their slots, so that
     // the misses overlap (this loop was a fifth of successors() on Korf's 15-puzzles).
@@ -338,19 +357,23 @@ class TilesSpace final : public TilesProblem {
     const std::size_t n = count_;
     for (std::size_t id = 0; id < std::min(n, kAhead); ++id) {
       ring[id] = hashWords(words(static_cast<StateId>(id)));
-      __builtin_prefetch(&slots_[ring[id] & mask_], 1);
+      __builtin_prefetch(&fresh[ring[id] & mask], 1);
     }
     for (std::size_t id = 0; id < n; ++id) {
+      if ((id & 0xFFFF) == 0xFFFF && give_up()) return false;  // every 2^16 states, ~2 ms
       const std::uint64_t h = ring[id % kAhead];
       if (id + kAhead < n) {
         const std::uint64_t ahead = hashWords(words(static_cast<StateId>(id + kAhead)));
         ring[id % kAhead] = ahead;
-        __builtin_prefetch(&slots_[ahead & mask_], 1);
+        __builtin_prefetch(&fresh[ahead & mask], 1);
       }
-      std::size_t slot = h & mask_;
-      while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
-      slots_[slot] = tagOf(h) | static_cast<StateId>(id);
+      std::size_t slot = h & mask;
+      while (fresh[slot] != kEmpty) slot = (slot + 1) & mask;
+      fresh[slot] = tagOf(h, shift) | static_cast<StateId>(id);
     }
+    slots_.swap(fresh);
+    setShift(shift);
+    return true;
   }
 
   static constexpr int n_ = N, n2_ = N * N;
@@ -358,6 +381,8 @@ class TilesSpace final : public TilesProblem {
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
   std::vector<std::uint32_t> slots_;
+  std::size_t retry_growth_at_ = 0;      // no table growth before this many states
+  std::function<bool()> interrupted_;    // the running search's limit check, if any
   std::size_t mask_ = 0;
   std::uint32_t id_mask_ = 0;
   int shift_ = 0;

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <thread>
 
 #include "test_graphs.h"
@@ -108,6 +109,49 @@ TEST(Limits, CancelObservedWithin64Expansions) {
       EXPECT_EQ(r.status, SearchStatus::kCancelled) << algorithmName(a);
       EXPECT_LE(r.expansions, at + 64) << algorithmName(a) << " cancelled at " << at;
     }
+  }
+}
+
+// A domain that consults the search's limit check in a long operation, as the tiles' table
+// rebuild does: the check is lent only while the search runs, is false until a limit is hit,
+// and once it reports the cancel the search ends right after the current expansion.
+class CheckingGrid : public testing::EndlessGrid {
+ public:
+  CheckingGrid(std::atomic<bool>* flag, std::uint64_t at) : EndlessGrid(3), flag_(flag), at_(at) {}
+  void setInterruptCheck(std::function<bool()> check) override {
+    check_ = std::move(check);
+    if (check_) ++lent_;
+  }
+  void successors(StateId s, std::vector<Edge>& out) override {
+    EXPECT_TRUE(check_) << "no check lent during the search";
+    if (++calls_ == at_) {
+      EXPECT_FALSE(check_()) << "a limit reported before any was hit";
+      *flag_ = true;
+      EXPECT_TRUE(check_()) << "the cancel went unnoticed";
+      cancelled_at_ = calls_;
+    }
+    EndlessGrid::successors(s, out);
+  }
+  std::function<bool()> check_;
+  int lent_ = 0;
+  std::uint64_t calls_ = 0, cancelled_at_ = 0;
+
+ private:
+  std::atomic<bool>* flag_;
+  std::uint64_t at_;
+};
+
+TEST(Limits, DomainSeesTheLimitCheckOnlyDuringTheSearch) {
+  for (Algorithm a : kAll) {
+    std::atomic<bool> cancel{false};
+    CheckingGrid grid(&cancel, 500);
+    SearchLimits limits;
+    limits.cancel = &cancel;
+    const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
+    EXPECT_EQ(r.status, SearchStatus::kCancelled) << algorithmName(a);
+    EXPECT_EQ(r.expansions, grid.cancelled_at_) << algorithmName(a) << ": went on after the check";
+    EXPECT_EQ(grid.lent_, 1) << algorithmName(a);
+    EXPECT_FALSE(grid.check_) << algorithmName(a) << ": the check outlived the search";
   }
 }
 

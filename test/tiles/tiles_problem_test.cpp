@@ -123,6 +123,37 @@ TEST(TilesProblem, MemoryIsCountedAndSmallPerState) {
 }
 
 // A search that needs more than the cap ends with kMemoryLimit instead of exhausting memory.
+// The table's rebuild yields to the search's limits (a rebuild of tens of millions of states
+// takes seconds) until the table is 90 % full, and the table stays valid either way.
+TEST(TilesProblem, TableGrowthYieldsToTheSearchLimitsUntilNinetyPercentFull) {
+  auto p = TilesProblem::create(randomSolvableBoard(3, 8, 0), {});
+  const std::size_t first_table = p->tableBytes();  // 2^12 slots: would double at 2868 states
+  int calls = 0;
+  p->setInterruptCheck([&calls] {
+    ++calls;
+    return true;  // "the search must stop"
+  });
+  exploreAndCheck(*p, 3500);
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(p->tableBytes(), first_table) << "grew although the search had to stop";
+  exploreAndCheck(*p, 1000000);  // past 90 % it grows anyway; every board keeps its id
+  EXPECT_EQ(p->numStates(), 181440u);
+  EXPECT_GT(p->tableBytes(), first_table);
+}
+
+// A search lends its check only while it runs: a problem searched by a planner that no longer
+// exists grows its table without calling into it (ASan would catch a dangling check).
+TEST(TilesProblem, OutlivesThePlannerThatSearchedIt) {
+  auto p = TilesProblem::create(randomSolvableBoard(3, 8, 0), randomTermWeights(2, 1));
+  {
+    SearchLimits limits;
+    limits.max_expansions = 100;
+    makePlanner(defaultConfig(Algorithm::kAmhaStar))->search(*p, limits);
+  }
+  exploreAndCheck(*p, 1000000);
+  EXPECT_EQ(p->numStates(), 181440u);
+}
+
 TEST(TilesProblem, MemoryCapEndsTheSearch) {
   auto p = TilesProblem::create(randomSolvableBoard(8, 1, 0), randomTermWeights(4, 1));
   SearchLimits limits;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "amha_planner/search/types.h"
@@ -39,6 +40,13 @@ class SearchProblem {
   /// Bytes the domain holds for its states (hash tables, state storage); counted against the
   /// search's memory cap together with the search's own arrays.
   virtual std::size_t memoryBytes() const { return 0; }
+
+  /// For the duration of a search, the search lends the domain its limit check: it returns
+  /// true once the search must stop (time limit, cancel, memory cap). A domain may call it
+  /// inside a long operation, such as rebuilding a hash table of tens of millions of states,
+  /// and cut the operation short as long as it stays valid; the search then stops at its next
+  /// step. Cleared (an empty function) when the search returns.
+  virtual void setInterruptCheck(std::function<bool()> check) { (void)check; }
 };
 
 }  // namespace amha
