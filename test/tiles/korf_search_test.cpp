@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "amha_planner/search/planner.h"
 #include "amha_planner/tiles/instances.h"
@@ -79,28 +80,37 @@ void checkSolution(const TilesProblem& p, const Instance& inst, const Solution& 
   EXPECT_LE(static_cast<double>(s.cost), s.certified_bound * *inst.optimal + 1e-9);
 }
 
+// Runs `config` on every instance (50 k expansions each) and replays every solution; returns
+// how many solutions there were.
+std::size_t replayAll(const std::vector<Instance>& inst, const PlannerConfig& config,
+                      const std::string& label) {
+  const auto weights = randomTermWeights(4, 1);
+  auto planner = makePlanner(config);
+  std::size_t solutions = 0;
+  for (const Instance& i : inst) {
+    auto p = TilesProblem::create(i.start, weights);
+    SearchLimits limits;
+    limits.max_expansions = 50000;
+    const SearchResult r = planner->search(*p, limits);
+    EXPECT_TRUE(r.hasSolution()) << label << " on instance " << i.id;
+    Cost last = kInfiniteCost;
+    for (const Solution& s : r.solutions) {
+      checkSolution(*p, i, s, label.c_str());
+      EXPECT_LE(s.cost, last);
+      last = s.cost;
+      ++solutions;
+    }
+  }
+  return solutions;
+}
+
 TEST(Korf100, AnytimeSolutionsReplayWithinTheirCertifiedBounds) {
   const auto inst = korf();
   if (inst.empty()) GTEST_SKIP() << "shared data absent";
-  const auto weights = randomTermWeights(4, 1);
   std::size_t solutions = 0;
   for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
                       Algorithm::kAnaStar}) {
-    auto planner = makePlanner(defaultConfig(a));
-    for (const Instance& i : inst) {
-      auto p = TilesProblem::create(i.start, weights);
-      SearchLimits limits;
-      limits.max_expansions = 50000;
-      const SearchResult r = planner->search(*p, limits);
-      ASSERT_TRUE(r.hasSolution()) << algorithmName(a) << " on instance " << i.id;
-      Cost last = kInfiniteCost;
-      for (const Solution& s : r.solutions) {
-        checkSolution(*p, i, s, algorithmName(a));
-        EXPECT_LE(s.cost, last);
-        last = s.cost;
-        ++solutions;
-      }
-    }
+    solutions += replayAll(inst, defaultConfig(a), algorithmName(a));
   }
   EXPECT_GT(solutions, 400u);
 }
@@ -109,26 +119,11 @@ TEST(Korf100, AnytimeSolutionsReplayWithinTheirCertifiedBounds) {
 TEST(Korf100, DtsScheduleSolutionsReplayWithinTheirCertifiedBounds) {
   const auto inst = korf();
   if (inst.empty()) GTEST_SKIP() << "shared data absent";
-  const auto weights = randomTermWeights(4, 1);
   std::size_t solutions = 0;
   for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar}) {
     PlannerConfig config = defaultConfig(a);
     config.schedule = QueueSchedule::kDts;
-    auto planner = makePlanner(config);
-    for (const Instance& i : inst) {
-      auto p = TilesProblem::create(i.start, weights);
-      SearchLimits limits;
-      limits.max_expansions = 50000;
-      const SearchResult r = planner->search(*p, limits);
-      ASSERT_TRUE(r.hasSolution()) << algorithmName(a) << " (dts) on instance " << i.id;
-      Cost last = kInfiniteCost;
-      for (const Solution& s : r.solutions) {
-        checkSolution(*p, i, s, (std::string(algorithmName(a)) + " (dts)").c_str());
-        EXPECT_LE(s.cost, last);
-        last = s.cost;
-        ++solutions;
-      }
-    }
+    solutions += replayAll(inst, config, std::string(algorithmName(a)) + " (dts)");
   }
   EXPECT_GT(solutions, 200u);
 }
