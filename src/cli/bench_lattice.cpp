@@ -25,6 +25,7 @@
 #include "lattice_options.h"
 #include "line_plot.h"
 #include "run_json.h"
+#include "schedule_option.h"
 
 namespace amha {
 namespace cli {
@@ -187,9 +188,8 @@ int benchLatticeMain(int argc, char** argv) {
   app.add_option("--query", query_texts, "a given pair \"sx,sy,st;gx,gy,gt\" (repeatable; replaces random pairs)");
   app.add_option("--algorithms", algorithms_text, "comma-separated algorithms (default amha,ara,ana,mha)");
   app.add_option("--time-limit", time_limit, "seconds per run, heuristics included (default 5)");
-  std::string schedule = "rr";
-  app.add_option("--schedule", schedule, "amha/mha order of the inadmissible queues: rr (round robin, the paper's) or dts (default rr)")
-      ->check(CLI::IsMember({"rr", "dts"}));
+  QueueSchedule schedule = QueueSchedule::kRoundRobin;
+  cli::addScheduleOption(app, &schedule);
   app.add_option("--out-dir", out_dir, "directory for the outputs (default docs/results)");
   app.add_option("--name", name, "file name prefix (default lattice)");
   app.add_option("--json", json_path, "also write every run (runs/solutions schema) to this file");
@@ -254,7 +254,7 @@ int benchLatticeMain(int argc, char** argv) {
   for (std::size_t q = 0; q < queries.size(); ++q) {
     for (std::size_t a = 0; a < algorithms.size(); ++a) {
       PlannerConfig pc = defaultConfig(algorithms[a]);
-      parseSchedule(schedule, &pc.schedule);
+      pc.schedule = schedule;
       Run r{q, algorithms[a], planners[a]->plan(queries[q].start, queries[q].goal, pc, limits)};
       if (r.result.error != lattice::QueryError::kNone) {
         std::cerr << "amha bench lattice: query " << q + 1 << ": " << r.result.message << "\n";

@@ -12,6 +12,7 @@
 #include "lattice_image.h"
 #include "lattice_options.h"
 #include "run_json.h"
+#include "schedule_option.h"
 
 namespace amha {
 namespace cli {
@@ -26,7 +27,7 @@ int planMain(int argc, char** argv) {
   std::string start_text, goal_text, algorithm_name = "amha", json_path, image_path;
   double time_limit = 10.0;
   double w1 = NAN, w2 = NAN, dw1 = NAN, dw2 = NAN, eps = NAN;
-  std::string schedule = "rr";
+  QueueSchedule schedule = QueueSchedule::kRoundRobin;
   app.add_option("--start", start_text, "start pose x,y,theta (m, m, rad; .cfg maps: the file's start)");
   app.add_option("--goal", goal_text, "goal pose x,y,theta (.cfg maps: the file's end)");
   app.add_option("--algorithm", algorithm_name, "amha | mha | ara | ana | wastar | astar (default amha)");
@@ -35,8 +36,7 @@ int planMain(int argc, char** argv) {
   app.add_option("--w2", w2, "initial w2 (amha/mha)");
   app.add_option("--dw1", dw1, "decrement of w1 per iteration");
   app.add_option("--dw2", dw2, "decrement of w2 per iteration");
-  app.add_option("--schedule", schedule, "amha/mha order of the inadmissible queues: rr (round robin, the paper's) or dts (default rr)")
-      ->check(CLI::IsMember({"rr", "dts"}));
+  cli::addScheduleOption(app, &schedule);
   app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
   app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
   app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
@@ -61,7 +61,7 @@ int planMain(int argc, char** argv) {
   if (!std::isnan(w2)) pc.w2 = w2;
   if (!std::isnan(dw1)) pc.dw1 = dw1;
   if (!std::isnan(dw2)) pc.dw2 = dw2;
-  parseSchedule(schedule, &pc.schedule);
+  pc.schedule = schedule;
   try {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {

@@ -23,6 +23,7 @@
 #include "keep_freed_memory.h"
 #include "line_plot.h"
 #include "run_json.h"
+#include "schedule_option.h"
 #include "tiles_report.h"
 
 namespace amha {
@@ -44,7 +45,7 @@ struct Options {
   double weight = 5.0;
   int heuristics = 4;
   std::uint32_t heuristic_seed = 1;
-  std::string schedule = "rr";
+  QueueSchedule schedule = QueueSchedule::kRoundRobin;
   double memory_limit_gb = 8.0;
   int jobs = 1;
   std::string json, write_instances, plot, markdown;
@@ -58,7 +59,7 @@ PlannerConfig configFor(Algorithm a, const Options& o) {
     case Algorithm::kAmhaStar:
     case Algorithm::kMhaStar:
       c.w1 = o.w1; c.w2 = o.w2; c.dw1 = o.dw1; c.dw2 = o.dw2;
-      parseSchedule(o.schedule, &c.schedule);
+      c.schedule = o.schedule;
       break;
     case Algorithm::kAraStar:
       c.w1 = o.eps; c.dw1 = o.deps;
@@ -138,10 +139,7 @@ int runTiles(int argc, char** argv) {
   app.add_option("--heuristics", o.heuristics, "inadmissible heuristics for A-MHA*/MHA* (default 4)")
       ->check(CLI::Range(0, 64));
   app.add_option("--heuristic-seed", o.heuristic_seed, "seed of their random weights (default 1)");
-  app.add_option("--schedule", o.schedule,
-                 "A-MHA*/MHA* order of the inadmissible queues: rr (round robin, the paper's) or "
-                 "dts (Dynamic Thompson Sampling) (default rr)")
-      ->check(CLI::IsMember({"rr", "dts"}));
+  cli::addScheduleOption(app, &o.schedule);
   app.add_option("--memory-limit-gb", o.memory_limit_gb,
                  "memory for all parallel runs together, split evenly between jobs (default 8)")
       ->check(CLI::PositiveNumber);
@@ -337,7 +335,7 @@ int runTiles(int argc, char** argv) {
             << instances.front().start.size << ", time limit " << o.time_limit << " s ("
             << (cpu_clock ? "CPU" : "wall") << " clock), "
             << o.heuristics << " inadmissible heuristic(s) (seed " << o.heuristic_seed << "), "
-            << (o.schedule == "dts" ? "DTS" : "round-robin") << " queue schedule\n"
+            << (o.schedule == QueueSchedule::kDts ? "DTS" : "round-robin") << " queue schedule\n"
             << reportText(runs, algorithms, cpu_clock);
 
   try {
@@ -366,7 +364,7 @@ int runTiles(int argc, char** argv) {
           {"random", o.random}, {"seed", o.seed}, {"walk", o.walk},
           {"algorithms", o.algorithms}, {"time_limit_s", o.time_limit}, {"clock", o.clock},
           {"max_expansions", o.max_expansions > 0 ? nlohmann::json(o.max_expansions) : nlohmann::json(nullptr)},
-          {"w1", o.w1}, {"w2", o.w2}, {"dw1", o.dw1}, {"dw2", o.dw2}, {"schedule", o.schedule},
+          {"w1", o.w1}, {"w2", o.w2}, {"dw1", o.dw1}, {"dw2", o.dw2}, {"schedule", scheduleName(o.schedule)},
           {"ara_eps", o.eps}, {"ara_deps", o.deps}, {"wastar_weight", o.weight},
           {"memory_limit_gb", o.memory_limit_gb}, {"jobs", o.jobs},
           {"fresh_memory", o.fresh_memory},

@@ -12,11 +12,7 @@ std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); 
 }  // namespace
 
 void DtsSchedule::reset(std::size_t n, std::uint64_t seed) {
-  alpha_.assign(n + 1, 1.0);
-  beta_.assign(n + 1, 1.0);
-  alpha_shape_.assign(n + 1, GammaShape());
-  beta_shape_.assign(n + 1, GammaShape());
-  best_h_.assign(n + 1, kInfiniteHeuristic);
+  arms_.assign(n + 1, Arm());
   // splitmix64 spreads any seed (0 included) over the xoshiro state.
   std::uint64_t z = seed;
   for (auto& word : engine_.s) {
@@ -29,16 +25,16 @@ void DtsSchedule::reset(std::size_t n, std::uint64_t seed) {
 }
 
 void DtsSchedule::resetProgress() {
-  for (auto& h : best_h_) h = kInfiniteHeuristic;
+  for (Arm& arm : arms_) arm.best_h = kInfiniteHeuristic;
 }
 
 std::size_t DtsSchedule::pick() {
   // The draw of arm i is x_i / (x_i + y_i); compared by cross-multiplying, without dividing.
   std::size_t best = 1;
   double best_x = 0.0, best_sum = 1.0;
-  for (std::size_t i = 1; i < alpha_.size(); ++i) {
-    const double x = gamma(alpha_shape_[i]);
-    const double sum = x + gamma(beta_shape_[i]);
+  for (std::size_t i = 1; i < arms_.size(); ++i) {
+    const double x = gamma(arms_[i].alpha_shape);
+    const double sum = x + gamma(arms_[i].beta_shape);
     if (i == 1 || x * best_sum > best_x * sum) {
       best = i;
       best_x = x;
@@ -52,17 +48,18 @@ void DtsSchedule::reward(std::size_t i, bool progress) {
   // alpha = 1 + successes and beta = 1 + failures, the evidence faded so that it sums to at
   // most C: the uniform prior stays, so a draw never degenerates to 0 (with alpha -> 0 every
   // draw would underflow to 0 and the first arm would win every tie).
-  double a = alpha_[i] - 1.0 + (progress ? 1.0 : 0.0);
-  double b = beta_[i] - 1.0 + (progress ? 0.0 : 1.0);
+  Arm& arm = arms_[i];
+  double a = arm.alpha - 1.0 + (progress ? 1.0 : 0.0);
+  double b = arm.beta - 1.0 + (progress ? 0.0 : 1.0);
   if (a + b > kWindow) {  // recent outcomes weigh the most
     const double scale = kWindow / (a + b);
     a *= scale;
     b *= scale;
   }
-  alpha_[i] = 1.0 + a;
-  beta_[i] = 1.0 + b;
-  alpha_shape_[i].set(alpha_[i]);
-  beta_shape_[i].set(beta_[i]);
+  arm.alpha = 1.0 + a;
+  arm.beta = 1.0 + b;
+  arm.alpha_shape.set(arm.alpha);
+  arm.beta_shape.set(arm.beta);
 }
 
 DtsSchedule::Engine::result_type DtsSchedule::Engine::operator()() {

@@ -26,8 +26,8 @@ class DtsSchedule {
   std::size_t pick();
   /// OPEN_i received a state with heuristic h; true if that is the smallest h_i so far.
   bool noteQueued(std::size_t i, HeuristicValue h) {
-    if (h >= best_h_[i]) return false;
-    best_h_[i] = h;
+    if (h >= arms_[i].best_h) return false;
+    arms_[i].best_h = h;
     return true;
   }
   /// An expansion from arm i made progress (or not).
@@ -47,18 +47,23 @@ class DtsSchedule {
   /// Marsaglia and Tsang's constants for one shape, computed when the shape changes rather
   /// than at every draw (a square root and a division each).
   struct GammaShape {
-    double d = 2.0 / 3.0, c = 1.0 / std::sqrt(6.0);
+    double d, c;
+    explicit GammaShape(double shape = 1.0) { set(shape); }
     void set(double shape) {
       d = shape - 1.0 / 3.0;
       c = 1.0 / std::sqrt(9.0 * d);
     }
   };
+  /// One queue's belief Beta(alpha, beta) and the smallest h_i queued in it so far.
+  struct Arm {
+    double alpha = 1.0, beta = 1.0;
+    GammaShape alpha_shape, beta_shape;
+    HeuristicValue best_h = kInfiniteHeuristic;
+  };
   double uniform();                      // in (0, 1)
   double gamma(const GammaShape& shape);  // Gamma(shape, 1), shape >= 1
 
-  std::vector<double> alpha_, beta_;
-  std::vector<GammaShape> alpha_shape_, beta_shape_;
-  std::vector<HeuristicValue> best_h_;
+  std::vector<Arm> arms_;  // arms_[0] (the anchor) is unused
   Engine engine_;
 };
 

@@ -122,7 +122,6 @@ TEST(TilesProblem, MemoryIsCountedAndSmallPerState) {
   EXPECT_EQ(p->memoryBytes(), p->arenaBytes() + p->tableBytes());
 }
 
-// A search that needs more than the cap ends with kMemoryLimit instead of exhausting memory.
 // The table's rebuild yields to the search's limits (a rebuild of tens of millions of states
 // takes seconds) until the table is 90 % full, and the table stays valid either way.
 TEST(TilesProblem, TableGrowthYieldsToTheSearchLimitsUntilNinetyPercentFull) {
@@ -154,6 +153,7 @@ TEST(TilesProblem, OutlivesThePlannerThatSearchedIt) {
   EXPECT_EQ(p->numStates(), 181440u);
 }
 
+// A search that needs more than the cap ends with kMemoryLimit instead of exhausting memory.
 TEST(TilesProblem, MemoryCapEndsTheSearch) {
   auto p = TilesProblem::create(randomSolvableBoard(8, 1, 0), randomTermWeights(4, 1));
   SearchLimits limits;
