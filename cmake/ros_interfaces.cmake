@@ -1,8 +1,8 @@
 # ROS: catkin, message/service/action generation and catkin_package(). Sets AMHA_HAVE_ROS.
 # Included before the rest of the build because catkin sets the output directories (devel space).
 set(AMHA_ROS_COMPONENTS
-  roscpp nodelet std_msgs geometry_msgs nav_msgs visualization_msgs actionlib actionlib_msgs
-  tf2 tf2_ros tf2_geometry_msgs message_generation)
+  roscpp nodelet std_msgs geometry_msgs nav_msgs map_msgs visualization_msgs actionlib
+  actionlib_msgs tf2 tf2_ros tf2_geometry_msgs message_generation)
 find_package(catkin QUIET COMPONENTS ${AMHA_ROS_COMPONENTS})
 if(catkin_FOUND)
   set(AMHA_HAVE_ROS ON)
@@ -13,8 +13,8 @@ if(catkin_FOUND)
   catkin_package(
     INCLUDE_DIRS include
     LIBRARIES amha_search amha_lattice amha_ros
-    CATKIN_DEPENDS roscpp nodelet std_msgs geometry_msgs nav_msgs visualization_msgs actionlib
-                   actionlib_msgs tf2 tf2_ros tf2_geometry_msgs message_runtime)
+    CATKIN_DEPENDS roscpp nodelet std_msgs geometry_msgs nav_msgs map_msgs visualization_msgs
+                   actionlib actionlib_msgs tf2 tf2_ros tf2_geometry_msgs message_runtime)
 else()
   message(STATUS "catkin or one of its components (${AMHA_ROS_COMPONENTS}) not found: "
                  "building without the ROS layer")

@@ -1,6 +1,7 @@
 // Message <-> library conversions (see conversions.h).
 #include "amha_planner/ros/conversions.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -8,6 +9,8 @@
 
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/utils.h>
+
+#include "amha_planner/ros/planner_params.h"  // normaliseFrame
 
 namespace amha_planner {
 
@@ -40,6 +43,40 @@ lat::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
                                    static_cast<int>(msg.info.height), msg.info.resolution,
                                    o.position.x, o.position.y, yaw, msg.data.data(),
                                    msg.data.size(), conversion, max_cells);
+}
+
+void applyOccupancyGridUpdate(const map_msgs::OccupancyGridUpdate& update,
+                              nav_msgs::OccupancyGrid* grid) {
+  auto refuse = [](const std::string& why) {
+    throw lat::LatticeError(lat::LatticeError::Kind::kMap, "map update refused: " + why);
+  };
+  if (grid->data.size() != static_cast<std::uint64_t>(grid->info.width) * grid->info.height) {
+    refuse("the map it would change is malformed");
+  }
+  const std::uint64_t w = update.width, h = update.height;
+  if (update.data.size() != w * h) {
+    std::ostringstream s;
+    s << "data length " << update.data.size() << " != width x height = " << w << " x " << h;
+    refuse(s.str());
+  }
+  // Unsigned 64-bit sums: x + width cannot wrap for 32-bit inputs.
+  const std::uint64_t x = update.x, y = update.y;
+  if (update.x < 0 || update.y < 0 || x + w > grid->info.width || y + h > grid->info.height) {
+    std::ostringstream s;
+    s << "rectangle (" << update.x << ", " << update.y << ") + " << w << " x " << h
+      << " leaves the " << grid->info.width << " x " << grid->info.height << " map";
+    refuse(s.str());
+  }
+  const std::string& uf = update.header.frame_id;
+  const std::string& gf = grid->header.frame_id;
+  if (!uf.empty() && !gf.empty() && normaliseFrame(uf) != normaliseFrame(gf)) {
+    refuse("frame '" + uf + "' is not the map's frame '" + gf + "'");
+  }
+  for (std::uint64_t r = 0; r < h; ++r) {
+    const auto src = update.data.begin() + static_cast<std::ptrdiff_t>(r * w);
+    std::copy(src, src + static_cast<std::ptrdiff_t>(w),
+              grid->data.begin() + static_cast<std::ptrdiff_t>((y + r) * grid->info.width + x));
+  }
 }
 
 bool checkPose(const geometry_msgs::Pose& pose, std::string* why) {

@@ -116,6 +116,10 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   ros::NodeHandle map_nh(nh_);
   map_nh.setCallbackQueue(&map_queue_);
   map_sub_ = map_nh.subscribe("map", 1, &PlannerServer::onMap, this);
+  // Partial updates on "<map topic>_updates", as costmap_2d publishes them and rviz reads them.
+  // Each one changes the map, so the queue is long: a dropped update would leave it wrong.
+  map_updates_sub_ = map_nh.subscribe(map_sub_.getTopic() + "_updates", 100,
+                                      &PlannerServer::onMapUpdate, this);
 
   ros::NodeHandle service_nh(pnh_);
   service_nh.setCallbackQueue(&service_queue_);
@@ -157,6 +161,7 @@ PlannerServer::~PlannerServer() {
   queue_.reset();
   action_server_.reset();
   map_sub_.shutdown();
+  map_updates_sub_.shutdown();
   plan_srv_.shutdown();
   make_plan_srv_.shutdown();
 }
@@ -180,11 +185,33 @@ void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& 
 }
 
 void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
+  if (adoptMap(*msg, /*is_update=*/false)) last_map_ = *msg;
+}
+
+void PlannerServer::onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update) {
+  if (last_map_.data.empty()) {
+    ROS_WARN_THROTTLE(5.0, "amha_planner: a map update on %s came before any valid map on %s: "
+                      "ignored", map_updates_sub_.getTopic().c_str(), map_sub_.getTopic().c_str());
+    return;
+  }
+  // Patched on a copy: a refused update (or map) leaves the last good map as it was.
+  nav_msgs::OccupancyGrid patched = last_map_;
+  try {
+    applyOccupancyGridUpdate(*update, &patched);
+  } catch (const std::exception& e) {
+    ROS_ERROR("amha_planner: %s; keeping the current map", e.what());
+    return;
+  }
+  if (adoptMap(patched, /*is_update=*/true)) last_map_ = std::move(patched);
+}
+
+bool PlannerServer::adoptMap(const nav_msgs::OccupancyGrid& msg, bool is_update) {
+  const char* what = is_update ? "map update" : "map";
   const auto t0 = std::chrono::steady_clock::now();
   const bool had_map = currentPlanner() != nullptr;
   try {
     auto grid = std::make_shared<const lat::GridMap>(
-        gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells));
+        gridMapFromOccupancy(msg, params_.occupancy, params_.max_map_cells));
     // Built off the lock: plans keep using the previous planner until the swap.
     auto planner = std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
     {
@@ -194,19 +221,22 @@ void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ROS_INFO("amha_planner: map %ux%u at %.3f m/cell accepted; lattice ready in %.2f s",
-             msg->info.width, msg->info.height, msg->info.resolution, seconds);
-    const std::string frame = normaliseFrame(msg->header.frame_id);
-    if (!frame.empty() && frame != params_.global_frame) {
+    // Updates can come several times a second (costmap_2d): one line each only when debugging.
+    ROS_LOG(is_update ? ros::console::levels::Debug : ros::console::levels::Info,
+            ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
+            "ready in %.2f s", what, msg.info.width, msg.info.height, msg.info.resolution, seconds);
+    const std::string frame = normaliseFrame(msg.header.frame_id);
+    if (!is_update && !frame.empty() && frame != params_.global_frame) {
       ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
                "map coordinates as '%s' coordinates",
                frame.c_str(), params_.global_frame.c_str(), params_.global_frame.c_str());
     }
+    return true;
   } catch (const std::exception& e) {
-    ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
-              msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(),
-              e.what(),
+    ROS_ERROR("amha_planner: %s refused (%ux%u, resolution %g, %zu cells of data): %s; %s", what,
+              msg.info.width, msg.info.height, msg.info.resolution, msg.data.size(), e.what(),
               had_map ? "keeping the previous map" : "no map yet, requests get NO_MAP");
+    return false;
   }
 }
 

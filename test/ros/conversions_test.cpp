@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <string>
 
 #include "amha_planner/ros/conversions.h"
 #include "amha_planner/ros/planner_params.h"
@@ -104,6 +106,69 @@ TEST(Conversions, BadGridsAreRefusedWithAReason) {
   } catch (const LatticeError& e) {
     EXPECT_NE(std::string(e.what()).find("too large"), std::string::npos) << e.what();
   }
+}
+
+map_msgs::OccupancyGridUpdate gridUpdate(int x, int y, unsigned w, unsigned h,
+                                         std::int8_t first) {
+  map_msgs::OccupancyGridUpdate u;
+  u.x = x;
+  u.y = y;
+  u.width = w;
+  u.height = h;
+  for (unsigned i = 0; i < w * h; ++i) u.data.push_back(static_cast<std::int8_t>(first + i));
+  return u;
+}
+
+TEST(MapUpdate, WritesItsRectangleRowByRowAndNothingElse) {
+  auto g = grid(5, 4, 0.0);
+  g.header.frame_id = "map";
+  auto u = gridUpdate(1, 2, 3, 2, 10);  // cells (1..3, 2..3) get 10..15
+  u.header.frame_id = "/map";           // the same frame, spelt with a slash
+  applyOccupancyGridUpdate(u, &g);
+  for (unsigned y = 0; y < 4; ++y) {
+    for (unsigned x = 0; x < 5; ++x) {
+      const bool inside = x >= 1 && x <= 3 && y >= 2;
+      const int expected = inside ? static_cast<int>(10 + (y - 2) * 3 + (x - 1)) : 0;
+      EXPECT_EQ(g.data[y * 5 + x], expected) << "cell (" << x << ", " << y << ")";
+    }
+  }
+  // An empty rectangle changes nothing; one that fills the map replaces all of it.
+  const auto before = g.data;
+  applyOccupancyGridUpdate(gridUpdate(5, 4, 0, 0, 0), &g);
+  EXPECT_EQ(g.data, before);
+  applyOccupancyGridUpdate(gridUpdate(0, 0, 5, 4, -1), &g);
+  EXPECT_EQ(g.data[0], -1);
+  EXPECT_EQ(g.data[19], 18);
+}
+
+TEST(MapUpdate, BadUpdatesAreRefusedWithAReasonAndChangeNothing) {
+  using amha::lattice::LatticeError;
+  auto g = grid(5, 4, 0.0);
+  g.header.frame_id = "map";
+  const auto before = g.data;
+  auto expectRefused = [&](const map_msgs::OccupancyGridUpdate& u, const std::string& reason) {
+    try {
+      applyOccupancyGridUpdate(u, &g);
+      ADD_FAILURE() << "accepted: " << reason;
+    } catch (const LatticeError& e) {
+      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(g.data, before) << reason;
+  };
+  auto u = gridUpdate(0, 0, 2, 2, 1);
+  u.data.pop_back();
+  expectRefused(u, "data length 3 != width x height");
+  expectRefused(gridUpdate(4, 0, 2, 1, 1), "leaves the 5 x 4 map");   // one column past the edge
+  expectRefused(gridUpdate(0, 3, 1, 2, 1), "leaves the 5 x 4 map");   // one row past the edge
+  expectRefused(gridUpdate(-1, 0, 1, 1, 1), "leaves the 5 x 4 map");  // negative offset
+  // x + width wraps to 2 in 32 bits (inside the map) but is far outside it; no rows, no data.
+  u = gridUpdate(6, 0, std::numeric_limits<std::uint32_t>::max() - 3, 0, 0);
+  expectRefused(u, "leaves the 5 x 4 map");
+  u = gridUpdate(std::numeric_limits<std::int32_t>::max(), 0, 0, 0, 0);
+  expectRefused(u, "leaves the 5 x 4 map");
+  u = gridUpdate(0, 0, 1, 1, 1);
+  u.header.frame_id = "odom";
+  expectRefused(u, "frame 'odom' is not the map's frame 'map'");
 }
 
 TEST(Conversions, CostsAreReportedInMetres) {

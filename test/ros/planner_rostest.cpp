@@ -3,6 +3,7 @@
 // checks the answers independently (paths against the published map, bounds, timing).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include <actionlib/client/simple_action_client.h>
+#include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/GetPlan.h>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -36,6 +38,7 @@ constexpr double kHeadingBin = 2 * M_PI / 16;
 
 ros::NodeHandle* g_nh = nullptr;
 ros::Publisher g_map_pub;
+ros::Publisher g_map_updates_pub;  // /map_updates, where costmap_2d would send partial updates
 
 // Every message on ~solutions, for comparing with the responses.
 std::mutex g_solutions_mutex;
@@ -482,6 +485,70 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
   EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the original map was not restored";
 }
 
+// The update that turns map `from` into `to`: the bounding box of the cells that differ.
+map_msgs::OccupancyGridUpdate updateBetween(const nav_msgs::OccupancyGrid& from,
+                                           const nav_msgs::OccupancyGrid& to) {
+  const int w = static_cast<int>(from.info.width), h = static_cast<int>(from.info.height);
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (from.data[y * w + x] == to.data[y * w + x]) continue;
+      x0 = std::min(x0, x);
+      y0 = std::min(y0, y);
+      x1 = std::max(x1, x);
+      y1 = std::max(y1, y);
+    }
+  }
+  map_msgs::OccupancyGridUpdate u;
+  u.header.frame_id = "map";
+  u.x = x0;
+  u.y = y0;
+  u.width = static_cast<std::uint32_t>(x1 - x0 + 1);
+  u.height = static_cast<std::uint32_t>(y1 - y0 + 1);
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) u.data.push_back(to.data[y * w + x]);
+  }
+  return u;
+}
+
+TEST(PlannerNodelet, MapUpdatesPatchTheMapAndBadOnesAreRefused) {
+  ASSERT_EQ(probeMap(), Status::INVALID_GOAL);
+  for (int i = 0; i < 500 && g_map_updates_pub.getNumSubscribers() == 0; ++i) {
+    ros::WallDuration(0.01).sleep();
+  }
+  ASSERT_GT(g_map_updates_pub.getNumSubscribers(), 0u) << "the planner is not on /map_updates";
+  // Close the maze's door with an update only (no new map).
+  const auto close = updateBetween(testMap(), testMapWithExtraBlock());
+  ASSERT_GT(close.data.size(), 0u);
+  ASSERT_LT(close.data.size(), testMap().data.size() / 100) << "the update should be small";
+  g_map_updates_pub.publish(close);
+  EXPECT_TRUE(waitForProbe(Status::INVALID_START, 20.0)) << "the update was not applied";
+  EXPECT_EQ(plan(kMazeStart, kMazeGoal, 5.0).status, Status::NO_PATH_FOUND);
+  // Bad updates: each would reopen the door if applied; the closed map must stay.
+  std::vector<std::pair<std::string, map_msgs::OccupancyGridUpdate>> bad;
+  auto open = updateBetween(testMapWithExtraBlock(), testMap());
+  auto u = open;
+  u.data.pop_back();
+  bad.emplace_back("data length != width x height", u);
+  u = open;
+  u.x = static_cast<std::int32_t>(testMap().info.width - u.width + 1);
+  bad.emplace_back("rectangle past the right edge", u);
+  u = open;
+  u.header.frame_id = "odom";
+  bad.emplace_back("another frame", u);
+  for (const auto& b : bad) {
+    g_map_updates_pub.publish(b.second);
+    ros::WallDuration(0.5).sleep();
+    EXPECT_EQ(probeMap(), Status::INVALID_START) << b.first << ": the bad update was used";
+  }
+  // Reopen it: the map is testMap() again, cell for cell, and plans through the maze work.
+  g_map_updates_pub.publish(open);
+  EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the reopening update was not applied";
+  const auto res = plan(kMazeStart, kMazeGoal, 5.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  expectValidPath(res.path, kMazeStart, kMazeGoal, testMap());
+}
+
 TEST(PlannerNodelet, ASecondRequestWaitsAndAThirdGetsBusy) {
   // planner_nodelet.test sets ~max_queued_requests to 1.
   std::atomic<int> feedback{0};  // before the client: see ActionSendsOneFeedbackPerSolution
@@ -536,6 +603,8 @@ int main(int argc, char** argv) {
   ros::Subscriber solutions = nh.subscribe("/planner/solutions", 1000,
                                             &amha_planner::test::onSolution);
   amha_planner::test::g_map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
+  amha_planner::test::g_map_updates_pub =
+      nh.advertise<map_msgs::OccupancyGridUpdate>("/map_updates", 10);
   amha_planner::test::g_map_pub.publish(amha_planner::test::testMap());
   // Wait for the planner to adopt the map (the probe answers INVALID_GOAL once it has).
   if (!ros::service::waitForService("/planner/plan", ros::Duration(30)) ||

@@ -10,6 +10,7 @@
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Quaternion.h>
+#include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
 #include <ros/time.h>
@@ -26,6 +27,14 @@ namespace amha_planner {
 amha::lattice::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
                                             const amha::lattice::OccupancyConversion& conversion,
                                             std::size_t max_cells);
+
+/// Writes a partial update (costmap_2d's `<topic>_updates`, as rviz reads them) into `grid`:
+/// the cells of the rectangle (x, y, width, height), row by row. Throws
+/// amha::lattice::LatticeError naming the problem, leaving `grid` unchanged, if the data
+/// length is not width * height, the rectangle leaves the grid, or the update names a frame
+/// other than the grid's.
+void applyOccupancyGridUpdate(const map_msgs::OccupancyGridUpdate& update,
+                              nav_msgs::OccupancyGrid* grid);
 
 /// Checks that a pose can be used as a planar pose: finite position, finite quaternion whose
 /// norm is within 1e-3 of 1 (so zero and non-normalised quaternions are refused). On failure

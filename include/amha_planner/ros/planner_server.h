@@ -1,8 +1,9 @@
 // The planning server behind both amha_planner/PlannerNodelet and planner_node: it keeps the
 // latest valid map's LatticePlanner, answers ~plan, ~make_plan and ~plan_anytime by driving it,
 // and streams every improved solution. Threads:
-//  - the map subscription has its own callback queue and thread, so a slow plan never delays a
-//    new map (building the new planner happens there too; plans keep the planner they started on);
+//  - the map subscription and its partial updates (<map topic>_updates) have their own callback
+//    queue and thread, so a slow plan never delays a new map (building the new planner happens
+//    there too; plans keep the planner they started on);
 //  - the services have their own queue, served by max_queued_requests + 2 threads, each waiting
 //    for its job's result;
 //  - the action server's goal and cancel callbacks have their own queue and thread, so a cancel
@@ -20,6 +21,7 @@
 #include <string>
 
 #include <actionlib/server/action_server.h>
+#include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/GetPlan.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/callback_queue.h>
@@ -60,6 +62,10 @@ class PlannerServer {
   };
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
+  void onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update);
+  /// Builds the planner of `msg` (a map, or the current map with an update applied) and makes
+  /// it current; false (logged) if the map is refused.
+  bool adoptMap(const nav_msgs::OccupancyGrid& msg, bool is_update);
   bool onPlan(Plan::Request& req, Plan::Response& res);
   bool onMakePlan(nav_msgs::GetPlan::Request& req, nav_msgs::GetPlan::Response& res);
   void onGoal(GoalHandle goal);
@@ -83,7 +89,8 @@ class PlannerServer {
 
   ros::CallbackQueue map_queue_, service_queue_, action_queue_;
   std::unique_ptr<ros::AsyncSpinner> map_spinner_, service_spinner_, action_spinner_;
-  ros::Subscriber map_sub_;
+  ros::Subscriber map_sub_, map_updates_sub_;
+  nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map (map thread only)
   ros::ServiceServer plan_srv_, make_plan_srv_;
   ros::Publisher solutions_pub_, path_pub_, markers_pub_;
   std::unique_ptr<ActionServer> action_server_;
