@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <actionlib/client/simple_action_client.h>
+#include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/GetPlan.h>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -81,6 +82,19 @@ TEST(PlannerNodeWithoutMap, BadMapsAreRefusedThenAGoodMapIsUsed) {
     const auto res = plan();
     EXPECT_EQ(res.status, Status::NO_MAP) << b.first << ": " << res.message;
   }
+  // A partial update with no map to patch is ignored (and does not become a map).
+  ros::NodeHandle nh;
+  ros::Publisher updates = nh.advertise<map_msgs::OccupancyGridUpdate>("/map_updates", 1);
+  for (int i = 0; i < 500 && updates.getNumSubscribers() == 0; ++i) ros::WallDuration(0.01).sleep();
+  ASSERT_GT(updates.getNumSubscribers(), 0u) << "the node is not on /map_updates";
+  map_msgs::OccupancyGridUpdate u;
+  u.header.frame_id = "map";
+  u.width = 2;
+  u.height = 2;
+  u.data.assign(4, 0);
+  updates.publish(u);
+  ros::WallDuration(0.5).sleep();
+  EXPECT_EQ(plan().status, Status::NO_MAP) << "an update before any map was used";
   g_map_pub.publish(testMap());
   Plan::Response res;
   for (int i = 0; i < 200; ++i) {
