@@ -85,8 +85,7 @@ TEST(PlannerNodeWithoutMap, BadMapsAreRefusedThenAGoodMapIsUsed) {
   // A partial update with no map to patch is ignored (and does not become a map).
   ros::NodeHandle nh;
   ros::Publisher updates = nh.advertise<map_msgs::OccupancyGridUpdate>("/map_updates", 1);
-  for (int i = 0; i < 500 && updates.getNumSubscribers() == 0; ++i) ros::WallDuration(0.01).sleep();
-  ASSERT_GT(updates.getNumSubscribers(), 0u) << "the node is not on /map_updates";
+  ASSERT_TRUE(waitForSubscriber(updates, 5.0)) << "the node is not on /map_updates";
   map_msgs::OccupancyGridUpdate u;
   u.header.frame_id = "map";
   u.width = 2;

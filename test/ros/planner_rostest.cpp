@@ -513,10 +513,7 @@ map_msgs::OccupancyGridUpdate updateBetween(const nav_msgs::OccupancyGrid& from,
 
 TEST(PlannerNodelet, MapUpdatesPatchTheMapAndBadOnesAreRefused) {
   ASSERT_EQ(probeMap(), Status::INVALID_GOAL);
-  for (int i = 0; i < 500 && g_map_updates_pub.getNumSubscribers() == 0; ++i) {
-    ros::WallDuration(0.01).sleep();
-  }
-  ASSERT_GT(g_map_updates_pub.getNumSubscribers(), 0u) << "the planner is not on /map_updates";
+  ASSERT_TRUE(waitForSubscriber(g_map_updates_pub, 5.0)) << "the planner is not on /map_updates";
   // Close the maze's door with an update only (no new map).
   const auto close = updateBetween(testMap(), testMapWithExtraBlock());
   ASSERT_GT(close.data.size(), 0u);

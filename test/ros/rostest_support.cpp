@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <ros/time.h>
+
 namespace amha_planner {
 namespace test {
 
@@ -130,6 +132,14 @@ std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::O
     }
   }
   return "";
+}
+
+bool waitForSubscriber(const ros::Publisher& pub, double seconds) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (pub.getNumSubscribers() == 0 && ros::WallTime::now() < deadline) {
+    ros::WallDuration(0.01).sleep();
+  }
+  return pub.getNumSubscribers() > 0;
 }
 
 geometry_msgs::PoseStamped pose(double x, double y, double yaw, const std::string& frame) {

@@ -9,6 +9,7 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
+#include <ros/publisher.h>
 
 namespace amha_planner {
 namespace test {
@@ -40,6 +41,10 @@ std::vector<std::array<double, 2>> testFootprint();
 std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::OccupancyGrid& map,
                                    const std::vector<std::array<double, 2>>& footprint,
                                    int lethal_threshold);
+
+/// Waits up to `seconds` for `pub` to have a subscriber (a message published before the
+/// connection exists is lost); true once it has one.
+bool waitForSubscriber(const ros::Publisher& pub, double seconds);
 
 geometry_msgs::PoseStamped pose(double x, double y, double yaw, const std::string& frame);
 double yawOf(const geometry_msgs::Pose& p);
