@@ -1,6 +1,7 @@
 # Robustness tests: the lattice's limits (big maps, memory caps, huge or negative sizes, a
-# cancel during the heuristic grids), regressions found by fuzzing, and the server's request
-# queue, which is ROS-free: it is built without ROS too, so the ThreadSanitizer pass runs it.
+# cancel during the heuristic grids), regressions found by fuzzing, and the server's job queues
+# (requests, map builds), which are ROS-free: built without ROS too, so the ThreadSanitizer pass
+# runs them.
 amha_add_gtest(amha_lattice_limits_tests
   SOURCES
     test/lattice/test_support.cpp
@@ -9,8 +10,12 @@ amha_add_gtest(amha_lattice_limits_tests
     test/lattice/lattice_regression_test.cpp
   LIBS amha_lattice)
 
-amha_add_gtest(amha_plan_queue_tests
-  SOURCES test/ros/plan_queue_test.cpp src/ros/plan_queue.cpp
+amha_add_gtest(amha_server_queue_tests
+  SOURCES
+    test/ros/plan_queue_test.cpp
+    test/ros/latest_job_runner_test.cpp
+    src/ros/plan_queue.cpp
+    src/ros/latest_job_runner.cpp
   LIBS amha_search)
 
 amha_add_gtest(amha_tiles_regression_tests
