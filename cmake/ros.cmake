@@ -8,6 +8,7 @@ add_library(amha_ros
   src/ros/conversions.cpp
   src/ros/planner_params.cpp
   src/ros/plan_queue.cpp
+  src/ros/latest_job_runner.cpp
   src/ros/planner_server.cpp
 )
 target_include_directories(amha_ros PUBLIC include ${catkin_INCLUDE_DIRS})

@@ -106,6 +106,7 @@ void moveResponse(Plan::Response&& in, Result* out) {
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     : nh_(nh), pnh_(pnh), params_(loadPlannerParams(pnh)) {
   queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(params_.max_queued_requests));
+  builder_ = std::make_unique<LatestJobRunner>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
 
   // Publishers are thread-safe; they live on the private handle (~solutions, ~plan, ~footprints).
@@ -156,6 +157,8 @@ PlannerServer::~PlannerServer() {
   }
   // Stop taking callbacks; waiting service threads return as their cancelled jobs finish.
   map_spinner_->stop();
+  builder_.reset();  // finishes a build under way, drops one waiting
+  planner_built_.notify_all();
   action_spinner_->stop();
   service_spinner_->stop();
   queue_.reset();
@@ -185,59 +188,132 @@ void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& 
 }
 
 void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
-  if (adoptMap(*msg, /*is_update=*/false)) last_map_ = *msg;
+  // Checked here, so that a malformed map never replaces a good one; built on the builder.
+  try {
+    gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells);
+  } catch (const std::exception& e) {
+    ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
+              msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(), e.what(),
+              currentPlanner() ? "keeping the previous map" : "no map yet, requests get NO_MAP");
+    return;
+  }
+  const std::string frame = normaliseFrame(msg->header.frame_id);
+  if (!frame.empty() && frame != params_.global_frame) {
+    ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
+             "map coordinates as '%s' coordinates",
+             frame.c_str(), params_.global_frame.c_str(), params_.global_frame.c_str());
+  }
+  {
+    std::lock_guard<std::mutex> lock(map_mutex_);
+    last_map_ = *msg;
+    ++map_version_;
+    unbuilt_full_map_ = true;
+    unbuilt_updates_ = 0;  // the updates before it are overwritten
+  }
+  builder_->post([this] { rebuildPlanner(); });
 }
 
 void PlannerServer::onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update) {
-  if (last_map_.data.empty()) {
-    ROS_WARN_THROTTLE(5.0, "amha_planner: a map update on %s came before any valid map on %s: "
-                      "ignored", map_updates_sub_.getTopic().c_str(), map_sub_.getTopic().c_str());
-    return;
+  {
+    std::lock_guard<std::mutex> lock(map_mutex_);
+    if (last_map_.data.empty()) {
+      ROS_WARN_THROTTLE(5.0, "amha_planner: a map update on %s came before any valid map on %s: "
+                        "ignored", map_updates_sub_.getTopic().c_str(), map_sub_.getTopic().c_str());
+      return;
+    }
+    // Checked before any cell is written: a refused update leaves the map as it was.
+    try {
+      applyOccupancyGridUpdate(*update, &last_map_);
+    } catch (const std::exception& e) {
+      ROS_ERROR("amha_planner: %s; keeping the current map", e.what());
+      return;
+    }
+    ++map_version_;
+    ++unbuilt_updates_;
   }
-  // Patched on a copy: a refused update (or map) leaves the last good map as it was.
-  nav_msgs::OccupancyGrid patched = last_map_;
-  try {
-    applyOccupancyGridUpdate(*update, &patched);
-  } catch (const std::exception& e) {
-    ROS_ERROR("amha_planner: %s; keeping the current map", e.what());
-    return;
-  }
-  if (adoptMap(patched, /*is_update=*/true)) last_map_ = std::move(patched);
+  builder_->post([this] { rebuildPlanner(); });
 }
 
-bool PlannerServer::adoptMap(const nav_msgs::OccupancyGrid& msg, bool is_update) {
-  const char* what = is_update ? "map update" : "map";
+void PlannerServer::rebuildPlanner() {
   const auto t0 = std::chrono::steady_clock::now();
-  const bool had_map = currentPlanner() != nullptr;
-  try {
-    auto grid = std::make_shared<const lat::GridMap>(
-        gridMapFromOccupancy(msg, params_.occupancy, params_.max_map_cells));
-    // Built off the lock: plans keep using the previous planner until the swap.
-    auto planner = std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
-    {
-      std::lock_guard<std::mutex> lock(planner_mutex_);
-      planner_ = std::move(planner);
-      ++maps_accepted_;
+  std::shared_ptr<const lat::GridMap> grid;
+  std::uint64_t version = 0, updates = 0;
+  bool full_map = false;
+  std::uint32_t width = 0, height = 0;
+  double resolution = 0.0;
+  std::string error;
+  {
+    std::lock_guard<std::mutex> lock(map_mutex_);
+    version = map_version_;
+    updates = unbuilt_updates_;
+    full_map = unbuilt_full_map_;
+    unbuilt_updates_ = 0;
+    unbuilt_full_map_ = false;
+    width = last_map_.info.width;
+    height = last_map_.info.height;
+    resolution = last_map_.info.resolution;
+    try {
+      grid = std::make_shared<const lat::GridMap>(
+          gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
+    } catch (const std::exception& e) {
+      error = e.what();
     }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // Updates can come several times a second (costmap_2d): one line each only when debugging.
-    ROS_LOG(is_update ? ros::console::levels::Debug : ros::console::levels::Info,
-            ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
-            "ready in %.2f s", what, msg.info.width, msg.info.height, msg.info.resolution, seconds);
-    const std::string frame = normaliseFrame(msg.header.frame_id);
-    if (!is_update && !frame.empty() && frame != params_.global_frame) {
-      ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
-               "map coordinates as '%s' coordinates",
-               frame.c_str(), params_.global_frame.c_str(), params_.global_frame.c_str());
-    }
-    return true;
-  } catch (const std::exception& e) {
-    ROS_ERROR("amha_planner: %s refused (%ux%u, resolution %g, %zu cells of data): %s; %s", what,
-              msg.info.width, msg.info.height, msg.info.resolution, msg.data.size(), e.what(),
-              had_map ? "keeping the previous map" : "no map yet, requests get NO_MAP");
-    return false;
   }
+  // Built off the locks: plans keep using the previous planner until the swap.
+  std::shared_ptr<lat::LatticePlanner> planner;
+  if (grid) {
+    try {
+      planner = std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  bool have_planner = false;
+  {
+    std::lock_guard<std::mutex> lock(planner_mutex_);
+    if (planner) planner_ = std::move(planner);
+    have_planner = planner_ != nullptr;
+    built_version_ = version;  // a refused map counts as built: requests must not wait for it
+  }
+  planner_built_.notify_all();
+
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::string what = full_map ? "map" : "";
+  if (updates > 0) {
+    what += (full_map ? " + " : "") + std::to_string(updates) +
+            (updates == 1 ? " update" : " updates (one build)");
+  }
+  if (!error.empty()) {
+    const char* kept = have_planner ? "plans keep the previous planner" : "requests get NO_MAP";
+    if (full_map) {
+      ROS_ERROR("amha_planner: %s %ux%u refused: %s; %s", what.c_str(), width, height,
+                error.c_str(), kept);
+    } else {  // every update of a refused map would say the same
+      ROS_ERROR_THROTTLE(5.0, "amha_planner: %s %ux%u refused: %s; %s", what.c_str(), width,
+                         height, error.c_str(), kept);
+    }
+    return;
+  }
+  // Updates can come several times a second (costmap_2d): one line each only when debugging.
+  ROS_LOG(full_map ? ros::console::levels::Info : ros::console::levels::Debug,
+          ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
+          "ready in %.2f s", what.c_str(), width, height, resolution, seconds);
+}
+
+bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {
+  std::uint64_t wanted = 0;
+  {
+    std::lock_guard<std::mutex> lock(map_mutex_);
+    wanted = map_version_;
+  }
+  std::unique_lock<std::mutex> lock(planner_mutex_);
+  while (built_version_ < wanted) {
+    if (cancel || shutting_down_) return false;
+    // Polls too: the cancel flag and shutdown are not signalled through this condition.
+    planner_built_.wait_for(lock, std::chrono::milliseconds(50));
+  }
+  return true;
 }
 
 bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
@@ -315,7 +391,14 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "cancelled before planning started";
       return res;
     }
-    // The planner of the latest map; this request keeps it even if a new map arrives.
+    // Every map and update received before this request is in the planner it gets (at most
+    // the build under way and one more); it keeps that planner even if a new map arrives.
+    if (!waitForCurrentMap(cancel)) {
+      res.status = Status::CANCELLED;
+      res.message = shutting_down_ ? "the planner is shutting down"
+                                   : "cancelled while the newest map's planner was being built";
+      return res;
+    }
     const auto planner = currentPlanner();
     if (!planner) {
       res.status = Status::NO_MAP;

@@ -546,6 +546,34 @@ TEST(PlannerNodelet, MapUpdatesPatchTheMapAndBadOnesAreRefused) {
   expectValidPath(res.path, kMazeStart, kMazeGoal, testMap());
 }
 
+// Updates that come faster than planners are built are folded into fewer builds: whatever the
+// folding, the planner must end on the last update (none lost, no older build swapped in after
+// a newer one), and stay there.
+TEST(PlannerNodelet, ABurstOfUpdatesEndsOnTheLastOne) {
+  ASSERT_EQ(probeMap(), Status::INVALID_GOAL);
+  ASSERT_TRUE(waitForSubscriber(g_map_updates_pub, 5.0)) << "the planner is not on /map_updates";
+  const auto close = updateBetween(testMap(), testMapWithExtraBlock());
+  const auto open = updateBetween(testMapWithExtraBlock(), testMap());
+  const auto stays = [](std::uint32_t expected) {
+    for (int i = 0; i < 10; ++i) {
+      if (probeMap() != expected) return false;
+      ros::WallDuration(0.1).sleep();
+    }
+    return true;
+  };
+  // 41 updates back to back, alternately closing and opening the maze's door: closed at the end.
+  for (int i = 0; i <= 40; ++i) g_map_updates_pub.publish(i % 2 == 0 ? close : open);
+  EXPECT_TRUE(waitForProbe(Status::INVALID_START, 20.0)) << "the last update (closed) never came";
+  EXPECT_TRUE(stays(Status::INVALID_START)) << "an older map replaced the last one";
+  // The same, ending open: the map is testMap() again, cell for cell.
+  for (int i = 0; i <= 40; ++i) g_map_updates_pub.publish(i % 2 == 0 ? open : close);
+  EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the last update (open) never came";
+  EXPECT_TRUE(stays(Status::INVALID_GOAL)) << "an older map replaced the last one";
+  const auto res = plan(kMazeStart, kMazeGoal, 5.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  expectValidPath(res.path, kMazeStart, kMazeGoal, testMap());
+}
+
 TEST(PlannerNodelet, ASecondRequestWaitsAndAThirdGetsBusy) {
   // planner_nodelet.test sets ~max_queued_requests to 1.
   std::atomic<int> feedback{0};  // before the client: see ActionSendsOneFeedbackPerSolution
@@ -601,7 +629,7 @@ int main(int argc, char** argv) {
                                             &amha_planner::test::onSolution);
   amha_planner::test::g_map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
   amha_planner::test::g_map_updates_pub =
-      nh.advertise<map_msgs::OccupancyGridUpdate>("/map_updates", 10);
+      nh.advertise<map_msgs::OccupancyGridUpdate>("/map_updates", 100);
   amha_planner::test::g_map_pub.publish(amha_planner::test::testMap());
   // Wait for the planner to adopt the map (the probe answers INVALID_GOAL once it has).
   if (!ros::service::waitForService("/planner/plan", ros::Duration(30)) ||

@@ -2,8 +2,11 @@
 // latest valid map's LatticePlanner, answers ~plan, ~make_plan and ~plan_anytime by driving it,
 // and streams every improved solution. Threads:
 //  - the map subscription and its partial updates (<map topic>_updates) have their own callback
-//    queue and thread, so a slow plan never delays a new map (building the new planner happens
-//    there too; plans keep the planner they started on);
+//    queue and thread, which checks each message and writes it into the current map;
+//  - one builder thread (LatestJobRunner) builds the planner of the newest map; updates that
+//    arrive during a build are folded into the next one, so the planner never falls behind a
+//    fast costmap. Plans keep the planner they started on, and a request first waits for the
+//    planner of every map and update received before it;
 //  - the services have their own queue, served by max_queued_requests + 2 threads, each waiting
 //    for its job's result;
 //  - the action server's goal and cancel callbacks have their own queue and thread, so a cancel
@@ -12,6 +15,7 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -33,6 +37,7 @@
 #include "amha_planner/Plan.h"
 #include "amha_planner/PlanAnytimeAction.h"
 #include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/ros/latest_job_runner.h"
 #include "amha_planner/ros/plan_queue.h"
 #include "amha_planner/ros/planner_params.h"
 
@@ -63,9 +68,12 @@ class PlannerServer {
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
   void onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update);
-  /// Builds the planner of `msg` (a map, or the current map with an update applied) and makes
-  /// it current; false (logged) if the map is refused.
-  bool adoptMap(const nav_msgs::OccupancyGrid& msg, bool is_update);
+  /// On the builder thread: builds the planner of the current map (with every update received
+  /// so far) and makes it current; a map the lattice refuses is logged and the planner kept.
+  void rebuildPlanner();
+  /// Waits until the planner covers every map and update received so far; false if `cancel`
+  /// or shutdown came first.
+  bool waitForCurrentMap(const std::atomic<bool>& cancel);
   bool onPlan(Plan::Request& req, Plan::Response& res);
   bool onMakePlan(nav_msgs::GetPlan::Request& req, nav_msgs::GetPlan::Response& res);
   void onGoal(GoalHandle goal);
@@ -90,7 +98,11 @@ class PlannerServer {
   ros::CallbackQueue map_queue_, service_queue_, action_queue_;
   std::unique_ptr<ros::AsyncSpinner> map_spinner_, service_spinner_, action_spinner_;
   ros::Subscriber map_sub_, map_updates_sub_;
-  nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map (map thread only)
+  std::mutex map_mutex_;  ///< guards the four below
+  nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map, with its accepted updates
+  std::uint64_t map_version_ = 0;     ///< maps and updates accepted into last_map_
+  std::uint64_t unbuilt_updates_ = 0; ///< updates accepted since the last build started
+  bool unbuilt_full_map_ = false;     ///< a full map accepted since the last build started
   ros::ServiceServer plan_srv_, make_plan_srv_;
   ros::Publisher solutions_pub_, path_pub_, markers_pub_;
   std::unique_ptr<ActionServer> action_server_;
@@ -99,8 +111,10 @@ class PlannerServer {
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
 
   mutable std::mutex planner_mutex_;
+  std::condition_variable planner_built_;  ///< signalled (planner_mutex_) after each build
   std::shared_ptr<amha::lattice::LatticePlanner> planner_;  ///< latest valid map's planner
-  std::uint64_t maps_accepted_ = 0;
+  std::uint64_t built_version_ = 0;  ///< map_version_ of the last build (refused ones too)
+  std::unique_ptr<LatestJobRunner> builder_;  ///< reset (joined) before the members it uses
 
   std::atomic<std::uint32_t> next_request_id_{1};
   std::atomic<bool> shutting_down_{false};
