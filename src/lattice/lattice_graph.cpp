@@ -72,8 +72,66 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
     penalty_q_[c] = static_cast<std::int64_t>(std::ceil(q - 1e-9));
   }
   buildActions();
-  buildClearanceAndOpenings();
+  computeClearanceAndOpenings(CellRect{0, 0, map_->width, map_->height});
   computeAnchorScales();
+}
+
+LatticeGraph::LatticeGraph(const LatticeGraph& previous, std::shared_ptr<const GridMap> map,
+                           const CellRect& changed)
+    : map_(std::move(map)),
+      config_(previous.config_),
+      primitives_(previous.primitives_),
+      footprint_(previous.footprint_),
+      actions_(previous.actions_),
+      action_index_(previous.action_index_),
+      action_cells_(previous.action_cells_),
+      offsets_(previous.offsets_),
+      rest_cells_(previous.rest_cells_),
+      penalty_q_(previous.penalty_q_),
+      clearance_(previous.clearance_),
+      clearance_cap_(previous.clearance_cap_),
+      euclid_per_cell_(previous.euclid_per_cell_),
+      grid_anchor_per_cell_(previous.grid_anchor_per_cell_),
+      cheapest_per_cell_(previous.cheapest_per_cell_),
+      euclid_turn_per_rad_(previous.euclid_turn_per_rad_),
+      grid_turn_per_rad_(previous.grid_turn_per_rad_) {
+  if (!map_) fail(LatticeError::Kind::kMap, "map: null");
+  validateMap(*map_);
+  const GridMap& a = previous.map();
+  const GridMap& b = *map_;
+  // Actions hold linear offsets and the anchor scales metres per cell: both need the same grid.
+  if (a.width != b.width || a.height != b.height || a.resolution != b.resolution ||
+      a.origin_x != b.origin_x || a.origin_y != b.origin_y || a.origin_yaw != b.origin_yaw) {
+    fail(LatticeError::Kind::kMap, "map update: the map's size, resolution or origin changed");
+  }
+  opened_[0] = previous.opened_[0];
+  opened_[1] = previous.opened_[1];
+  openings_equal_ = previous.openings_equal_;
+  linkActionsInto();
+  const CellRect inside{std::max(changed.x0, 0), std::max(changed.y0, 0),
+                        std::min(changed.x1, b.width), std::min(changed.y1, b.height)};
+  if (inside.empty()) return;
+  // The values that can change: those within reach of a changed cell.
+  const int m = dependenceMargin();
+  computeClearanceAndOpenings(CellRect{std::max(inside.x0 - m, 0), std::max(inside.y0 - m, 0),
+                                       std::min(inside.x1 + m, b.width),
+                                       std::min(inside.y1 + m, b.height)});
+}
+
+int LatticeGraph::dependenceMargin() const {
+  // A capped clearance depends on obstacles within the cap; an opening on obstacles within 2r
+  // (the erosion reads r around each cell, the dilation r more). One cell more for rounding.
+  double reach = clearance_cap_;
+  if (config_.num_inadmissible >= 2) {
+    const std::array<double, 2> radii = openingRadii();
+    reach = std::max({reach, 2.0 * radii[0], 2.0 * radii[1]});
+  }
+  return static_cast<int>(std::ceil(reach)) + 1;
+}
+
+void LatticeGraph::linkActionsInto() {
+  actions_into_.assign(primitives_.num_headings, {});
+  for (const LatticeAction& a : actions_) actions_into_[a.end_heading].push_back(&a);
 }
 
 void LatticeGraph::buildActions() {
@@ -131,8 +189,11 @@ void LatticeGraph::buildActions() {
     }
   }
   action_index_[n] = actions_.size();
-  actions_into_.assign(n, {});
-  for (const LatticeAction& a : actions_) actions_into_[a.end_heading].push_back(&a);
+  linkActionsInto();
+  // Clearance only decides "clearance > sweep_radius": values above every radius are equal.
+  float max_sweep = 0.0f;
+  for (const LatticeAction& a : actions_) max_sweep = std::max(max_sweep, a.sweep_radius);
+  clearance_cap_ = max_sweep + 1.0f;
   rest_cells_.resize(n);
   for (int h = 0; h < n; ++h) {
     if (!footprint_.polygon.empty()) {
@@ -141,55 +202,76 @@ void LatticeGraph::buildActions() {
   }
 }
 
-void LatticeGraph::buildClearanceAndOpenings() {
-  const int w = map_->width, h = map_->height;
-  // Free space with a blocked border: leaving the map is as bad as hitting a wall.
-  cv::Mat free(h + 2, w + 2, CV_8U, cv::Scalar(0));
-  for (int y = 0; y < h; ++y) {
-    const std::uint8_t* c = &map_->cost[static_cast<std::size_t>(y) * w];
-    std::uint8_t* row = free.ptr<std::uint8_t>(y + 1) + 1;
-    for (int x = 0; x < w; ++x) row[x] = c[x] < kLethalCost ? 255 : 0;
-  }
-  cv::Mat dist;
-  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  clearance_.resize(static_cast<std::size_t>(w) * h);
-  for (int y = 0; y < h; ++y) {
-    const float* d = dist.ptr<float>(y + 1) + 1;
-    std::copy(d, d + w, clearance_.begin() + static_cast<std::ptrdiff_t>(y) * w);
-  }
-  if (config_.num_inadmissible < 2) return;
-  // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
-  // obstacle. Both steps are exact Euclidean distance transforms.
+std::array<double, 2> LatticeGraph::openingRadii() const {
   // A round robot's inscribed and circumscribed radii are both its radius (the polygon that
   // approximates the circle is only for the footprint cells).
   const bool round = config_.footprint.empty();
-  const double radii[2] = {round ? config_.robot_radius : footprint_.inscribed_radius,
-                           round ? config_.robot_radius : footprint_.circumscribed_radius};
+  return {(round ? config_.robot_radius : footprint_.inscribed_radius) / map_->resolution,
+          (round ? config_.robot_radius : footprint_.circumscribed_radius) / map_->resolution};
+}
+
+void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
+  const int w = map_->width, h = map_->height;
+  const std::size_t cells = static_cast<std::size_t>(w) * h;
+  const bool openings = config_.num_inadmissible >= 2;
+  const std::array<double, 2> radii = openingRadii();
+  // Reading the map dependenceMargin() around `out` gives every cell of `out` exactly the value
+  // a whole-map computation gives it. Cells near the crop's edge may get wrong values (they do
+  // not see obstacles beyond it), but they are more than r from `out`, too far to matter.
+  const int margin = dependenceMargin();
+  // Free space with a blocked border (padded coordinates: map cell (x, y) is (x + 1, y + 1)):
+  // leaving the map is as bad as hitting a wall.
+  const int cx0 = std::max(out.x0 + 1 - margin, 0), cy0 = std::max(out.y0 + 1 - margin, 0);
+  const int cx1 = std::min(out.x1 + 1 + margin, w + 2), cy1 = std::min(out.y1 + 1 + margin, h + 2);
+  const int cw = cx1 - cx0, ch = cy1 - cy0;
+  cv::Mat free(ch, cw, CV_8U, cv::Scalar(0));
+  for (int py = std::max(cy0, 1); py < std::min(cy1, h + 1); ++py) {
+    const int y = py - 1;
+    const std::uint8_t* c = &map_->cost[static_cast<std::size_t>(y) * w];
+    std::uint8_t* row = free.ptr<std::uint8_t>(py - cy0);
+    for (int px = std::max(cx0, 1); px < std::min(cx1, w + 1); ++px) {
+      row[px - cx0] = c[px - 1] < kLethalCost ? 255 : 0;
+    }
+  }
+  cv::Mat dist;
+  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  clearance_.resize(cells);
+  for (int y = out.y0; y < out.y1; ++y) {
+    const float* d = dist.ptr<float>(y + 1 - cy0);  // d[x + 1 - cx0]: cell (x, y)
+    float* c = clearance_.data() + static_cast<std::size_t>(y) * w;
+    for (int x = out.x0; x < out.x1; ++x) c[x] = std::min(d[x + 1 - cx0], clearance_cap_);
+  }
+  if (!openings) return;
+  // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
+  // obstacle. Both steps are exact Euclidean distance transforms.
   for (int k = 0; k < 2; ++k) {
     if (k == 1 && radii[1] == radii[0]) {
       opened_[1] = opened_[0];
       break;
     }
-    const double r = radii[k] / map_->resolution;
-    std::vector<std::uint8_t>& out = opened_[k];
-    out.assign(static_cast<std::size_t>(w) * h, 0);
+    const double r = radii[k];
+    std::vector<std::uint8_t>& o = opened_[k];
+    o.resize(cells);
     if (r <= 0.0) {
-      for (std::size_t i = 0; i < out.size(); ++i) out[i] = map_->cost[i] < kLethalCost;
+      for (int y = out.y0; y < out.y1; ++y) {
+        const std::size_t row = static_cast<std::size_t>(y) * w;
+        for (int x = out.x0; x < out.x1; ++x) o[row + x] = map_->cost[row + x] < kLethalCost;
+      }
       continue;
     }
-    cv::Mat not_eroded(h + 2, w + 2, CV_8U);
-    for (int y = 0; y < h + 2; ++y) {
+    cv::Mat not_eroded(ch, cw, CV_8U);
+    for (int y = 0; y < ch; ++y) {
       const float* d = dist.ptr<float>(y);
-      std::uint8_t* o = not_eroded.ptr<std::uint8_t>(y);
-      for (int x = 0; x < w + 2; ++x) o[x] = d[x] > r ? 0 : 255;
+      std::uint8_t* e = not_eroded.ptr<std::uint8_t>(y);
+      for (int x = 0; x < cw; ++x) e[x] = d[x] > r ? 0 : 255;
     }
     cv::Mat d2;
     cv::distanceTransform(not_eroded, d2, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-    for (int y = 0; y < h; ++y) {
-      const float* d = d2.ptr<float>(y + 1) + 1;
-      for (int x = 0; x < w; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * w + x;
-        out[i] = d[x] <= r && map_->cost[i] < kLethalCost;
+    for (int y = out.y0; y < out.y1; ++y) {
+      const float* d = d2.ptr<float>(y + 1 - cy0);
+      const std::size_t row = static_cast<std::size_t>(y) * w;
+      for (int x = out.x0; x < out.x1; ++x) {
+        o[row + x] = d[x + 1 - cx0] <= r && map_->cost[row + x] < kLethalCost;
       }
     }
   }

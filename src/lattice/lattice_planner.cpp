@@ -115,6 +115,14 @@ LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const Lattice
   impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
 }
 
+LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<const GridMap> map,
+                               const CellRect& changed)
+    : impl_(new Impl) {
+  impl_->map = map;
+  impl_->graph.reset(new LatticeGraph(*previous.impl_->graph, std::move(map), changed));
+  impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
+}
+
 LatticePlanner::~LatticePlanner() = default;
 
 const GridMap& LatticePlanner::map() const { return *impl_->map; }

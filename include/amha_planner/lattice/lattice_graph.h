@@ -3,6 +3,7 @@
 // Immutable after construction, so any number of searches may share it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -38,6 +39,14 @@ class LatticeGraph {
   /// cells and costs, the clearance map, and the free-space openings for the heuristics.
   /// Throws LatticeError.
   LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config);
+  /// The graph of `map`, whose cells differ from previous.map()'s only inside `changed` (same
+  /// size, resolution and origin, else LatticeError): equal to LatticeGraph(map,
+  /// previous.config()), but the actions are copied and only the clearance and openings that
+  /// the change can reach are recomputed.
+  LatticeGraph(const LatticeGraph& previous, std::shared_ptr<const GridMap> map,
+               const CellRect& changed);
+  LatticeGraph(const LatticeGraph&) = delete;
+  LatticeGraph& operator=(const LatticeGraph&) = delete;
 
   const GridMap& map() const { return *map_; }
   const LatticeConfig& config() const { return config_; }
@@ -103,8 +112,10 @@ class LatticeGraph {
   double euclidTurnUnitsPerRadian() const { return euclid_turn_per_rad_; }
   double gridTurnUnitsPerRadian() const { return grid_turn_per_rad_; }
 
-  /// Distance (cells) from each cell centre to the nearest lethal/unknown cell centre.
+  /// Distance (cells) from each cell centre to the nearest lethal/unknown cell centre, capped
+  /// at clearanceCap() (only comparisons with sweep radii below it matter).
   const std::vector<float>& clearance() const { return clearance_; }
+  float clearanceCap() const { return clearance_cap_; }
   /// Free space (1) opened by the inscribed (index 0) / circumscribed (index 1) radius.
   const std::vector<std::uint8_t>& openedFree(int which) const { return opened_[which]; }
   /// True when the two openings are the same cells (then the heuristics share one grid).
@@ -112,7 +123,14 @@ class LatticeGraph {
 
  private:
   void buildActions();
-  void buildClearanceAndOpenings();
+  void linkActionsInto();
+  /// The radii (cells) of the two openings.
+  std::array<double, 2> openingRadii() const;
+  /// How far (cells) a cell's clearance or opening can depend on other cells' costs.
+  int dependenceMargin() const;
+  /// Computes clearance_ and opened_ on the cells of `out` (all of them on first use), reading
+  /// the map only as far around `out` as their values can depend on.
+  void computeClearanceAndOpenings(const CellRect& out);
   void computeAnchorScales();
 
   std::shared_ptr<const GridMap> map_;
@@ -127,6 +145,7 @@ class LatticeGraph {
   std::vector<std::vector<CellOffset>> rest_cells_;  // footprint at rest, per heading
   std::vector<std::int64_t> penalty_q_;              // 256 entries: Q[c]
   std::vector<float> clearance_;
+  float clearance_cap_ = 0.0f;
   std::vector<std::uint8_t> opened_[2];
   bool openings_equal_ = false;
   double euclid_per_cell_ = 0.0, grid_anchor_per_cell_ = 0.0, cheapest_per_cell_ = 0.0;

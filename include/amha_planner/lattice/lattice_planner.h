@@ -3,6 +3,7 @@
 // Everything here is ROS-free; poses are in the map frame (REP 103: metres, radians, x forward).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -72,6 +73,18 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
 
 struct Pose2D {
   double x = 0.0, y = 0.0, theta = 0.0;
+};
+
+/// The cells [x0, x1) x [y0, y1) of a map (e.g. the part a costmap update changed).
+struct CellRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  /// The smallest rectangle holding both.
+  CellRect unite(const CellRect& o) const {
+    if (empty()) return o;
+    if (o.empty()) return *this;
+    return {std::min(x0, o.x0), std::min(y0, o.y0), std::max(x1, o.x1), std::max(y1, o.y1)};
+  }
 };
 
 /// The robot and its motion model.
@@ -169,6 +182,13 @@ class LatticePlanner {
  public:
   /// Throws LatticeError when the map, primitives or robot are unusable.
   LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config);
+  /// The planner of `map`, a version of previous.map() whose cells differ only inside
+  /// `changed` (same size, resolution and origin; checked, else LatticeError): the same result
+  /// as the constructor above with previous.config(), built from `previous` by recomputing only
+  /// what the change can reach (the robot's primitives and footprint sweeps are copied, the
+  /// clearance and openings recomputed near `changed`). Cached heuristic grids are not kept.
+  LatticePlanner(const LatticePlanner& previous, std::shared_ptr<const GridMap> map,
+                 const CellRect& changed);
   ~LatticePlanner();
   LatticePlanner(const LatticePlanner&) = delete;
   LatticePlanner& operator=(const LatticePlanner&) = delete;

@@ -1,0 +1,195 @@
+// A planner built from the previous one after a local map change (a costmap update) must be
+// the planner a full build gives: the same clearance and openings in every cell, so the same
+// edge costs, heuristics and plans. Checked after chains of random updates (so that errors
+// cannot pile up unseen), for round and polygonal robots, at the map's edges and corners.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "amha_planner/lattice/lattice_graph.h"
+#include "amha_planner/lattice/lattice_planner.h"
+#include "test_support.h"
+
+namespace amha {
+namespace lattice {
+namespace {
+
+// The first cell where two arrays differ, or "" (a readable failure instead of a huge dump).
+template <class T>
+std::string firstDifference(const std::vector<T>& a, const std::vector<T>& b, int width) {
+  if (a.size() != b.size()) {
+    return "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
+  }
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] != b[i]) {
+      return "cell (" + std::to_string(i % width) + ", " + std::to_string(i / width) + "): " +
+             std::to_string(+a[i]) + " vs " + std::to_string(+b[i]);
+    }
+  }
+  return "";
+}
+
+void expectSameGraph(const LatticeGraph& updated, const LatticeGraph& full, const std::string& what) {
+  const int w = full.width();
+  EXPECT_EQ(firstDifference(updated.clearance(), full.clearance(), w), "") << what << ": clearance";
+  EXPECT_EQ(firstDifference(updated.openedFree(0), full.openedFree(0), w), "") << what << ": opening 0";
+  EXPECT_EQ(firstDifference(updated.openedFree(1), full.openedFree(1), w), "") << what << ": opening 1";
+  EXPECT_EQ(updated.openingsEqual(), full.openingsEqual()) << what;
+  EXPECT_EQ(updated.actions().size(), full.actions().size()) << what;
+}
+
+struct Robot {
+  const char* name;
+  LatticeConfig config;
+};
+
+std::vector<Robot> robots() {
+  std::vector<Robot> out;
+  LatticeConfig round;
+  round.robot_radius = 0.2;  // 4 cells at 0.05 m
+  out.push_back({"round robot, 3 inadmissible", round});
+  LatticeConfig polygon;
+  polygon.footprint = test::rectangle(0.35, 0.15);  // openings of 3 and 7.6 cells: they differ
+  out.push_back({"rectangular robot", polygon});
+  LatticeConfig point;
+  point.robot_radius = 0.0;
+  out.push_back({"point robot", point});
+  LatticeConfig one;
+  one.robot_radius = 0.3;
+  one.num_inadmissible = 1;  // no openings at all
+  out.push_back({"round robot, 1 inadmissible", one});
+  return out;
+}
+
+TEST(LatticeIncremental, ChainsOfRandomUpdatesGiveTheFullBuildsGraph) {
+  // A cluttered map, and an open one where clearances reach their cap (so that a change is
+  // felt as far away as the cap).
+  for (int obstacles : {18, 2})
+  for (const Robot& robot : robots()) {
+    std::mt19937 rng(7);
+    std::shared_ptr<GridMap> map = test::randomMap(150, 110, 0.05, 3, obstacles, 40);
+    auto graph = std::make_unique<LatticeGraph>(map, robot.config);
+    const std::uint8_t values[] = {0, 0, 17, 120, kInscribedCost, kLethalCost, kLethalCost,
+                                   kUnknownCost};
+    for (int step = 0; step < 30; ++step) {
+      // Rectangles of 1..45 cells a side anywhere, some sticking out of the map (clipped).
+      std::uniform_int_distribution<int> side(1, 45), px(-10, map->width), py(-10, map->height);
+      CellRect r;
+      r.x0 = px(rng);
+      r.y0 = py(rng);
+      r.x1 = r.x0 + side(rng);
+      r.y1 = r.y0 + side(rng);
+      auto next = std::make_shared<GridMap>(*map);
+      std::uniform_int_distribution<int> pick(0, sizeof values - 1);
+      const bool one_value = step % 3 != 0;  // a blocked or cleared area, or a random mix
+      const std::uint8_t v = values[pick(rng)];
+      for (int y = std::max(r.y0, 0); y < std::min(r.y1, map->height); ++y) {
+        for (int x = std::max(r.x0, 0); x < std::min(r.x1, map->width); ++x) {
+          next->cost[static_cast<std::size_t>(y) * map->width + x] = one_value ? v : values[pick(rng)];
+        }
+      }
+      auto updated = std::make_unique<LatticeGraph>(*graph, next, r);
+      const LatticeGraph full(next, robot.config);
+      expectSameGraph(*updated, full,
+                      std::string(robot.name) + ", " + std::to_string(obstacles) +
+                          " obstacles, update " + std::to_string(step) + " (" +
+                          std::to_string(r.x0) + ", " + std::to_string(r.y0) + ") - (" +
+                          std::to_string(r.x1) + ", " + std::to_string(r.y1) + ")");
+      if (HasFailure()) return;
+      map = next;
+      graph = std::move(updated);
+    }
+  }
+}
+
+// One obstacle appears in open space: every cell within the clearance cap of it changes, the
+// farthest ones by less than a cell (so a margin one cell short would leave them stale).
+TEST(LatticeIncremental, ANewObstacleIsFeltAsFarAsTheClearanceCap) {
+  auto map = test::randomMap(120, 120, 0.05, 1, 0, 0);
+  LatticeConfig config;
+  const LatticeGraph graph(map, config);
+  const int cx = 60, cy = 60;
+  auto next = std::make_shared<GridMap>(*map);
+  next->cost[static_cast<std::size_t>(cy) * 120 + cx] = kLethalCost;
+  const LatticeGraph updated(graph, next, CellRect{cx, cy, cx + 1, cy + 1});
+  const LatticeGraph full(next, config);
+  expectSameGraph(updated, full, "one obstacle");
+  const float cap = full.clearanceCap();
+  int ring = 0;  // cells whose distance to the obstacle lies in (cap - 1, cap)
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 120; ++x) {
+      const double d = std::hypot(x - cx, y - cy);
+      if (d > cap - 1 && d < cap) ++ring;
+    }
+  }
+  EXPECT_GT(ring, 0) << "the map is too small to test the cap's reach";
+}
+
+TEST(LatticeIncremental, AnEmptyChangeCopiesAndAnotherGridIsRefused) {
+  auto map = test::randomMap(80, 60, 0.05, 5, 8, 0);
+  LatticeConfig config;
+  const LatticeGraph graph(map, config);
+  const LatticeGraph same(graph, map, CellRect{});
+  expectSameGraph(same, graph, "empty change");
+  auto bigger = test::randomMap(81, 60, 0.05, 5, 8, 0);
+  EXPECT_THROW(LatticeGraph(graph, bigger, CellRect{0, 0, 1, 1}), LatticeError);
+  auto moved = std::make_shared<GridMap>(*map);
+  moved->origin_x += 0.05;
+  EXPECT_THROW(LatticeGraph(graph, moved, CellRect{0, 0, 1, 1}), LatticeError);
+  auto finer = std::make_shared<GridMap>(*map);
+  finer->resolution = 0.04;
+  EXPECT_THROW(LatticePlanner(LatticePlanner(map, config), finer, CellRect{0, 0, 1, 1}),
+               LatticeError);
+}
+
+TEST(LatticeIncremental, AnUpdatedPlannerPlansLikeAFreshOne) {
+  auto map = test::randomMap(160, 120, 0.05, 11, 14, 30);
+  LatticeConfig config;
+  config.footprint = test::rectangle(0.25, 0.15);
+  auto planner = std::make_unique<LatticePlanner>(map, config);
+  // Wall off the middle, leaving a gap, in three updates.
+  const CellRect walls[] = {{78, 0, 82, 50}, {78, 60, 82, 120}, {0, 0, 3, 3}};
+  for (const CellRect& r : walls) {
+    auto next = std::make_shared<GridMap>(*map);
+    for (int y = r.y0; y < r.y1; ++y) {
+      for (int x = r.x0; x < r.x1; ++x) next->cost[static_cast<std::size_t>(y) * 160 + x] = kLethalCost;
+    }
+    planner = std::make_unique<LatticePlanner>(*planner, next, r);
+    map = next;
+  }
+  LatticePlanner fresh(map, config);
+  // Free start and goal on either side of the wall.
+  auto freeCell = [&](int x0, int x1) {
+    for (int y = 10; y < 110; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        bool clear = true;
+        for (int dy = -6; dy <= 6 && clear; ++dy) {
+          for (int dx = -6; dx <= 6 && clear; ++dx) clear = map->at(x + dx, y + dy) < kInscribedCost;
+        }
+        if (clear) return Pose2D{(x + 0.5) * 0.05, (y + 0.5) * 0.05, 0.0};
+      }
+    }
+    return Pose2D{-1, -1, 0};
+  };
+  const Pose2D start = freeCell(10, 60), goal = freeCell(100, 150);
+  ASSERT_GE(start.x, 0.0);
+  ASSERT_GE(goal.x, 0.0);
+  PlannerConfig search;
+  search.algorithm = Algorithm::kAStar;
+  SearchLimits limits;
+  limits.time_limit_s = 30.0;
+  const PlanResult a = planner->plan(start, goal, search, limits);
+  const PlanResult b = fresh.plan(start, goal, search, limits);
+  ASSERT_EQ(a.error, QueryError::kNone) << a.message;
+  EXPECT_EQ(a.search.status, b.search.status);
+  EXPECT_EQ(a.search.expansions, b.search.expansions);
+  ASSERT_EQ(a.solutions.size(), b.solutions.size());
+  if (!a.solutions.empty()) EXPECT_EQ(a.solutions.back().search.cost, b.solutions.back().search.cost);
+}
+
+}  // namespace
+}  // namespace lattice
+}  // namespace amha
