@@ -209,6 +209,7 @@ void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
     ++map_version_;
     unbuilt_full_map_ = true;
     unbuilt_updates_ = 0;  // the updates before it are overwritten
+    unbuilt_rect_ = lat::CellRect{};
   }
   builder_->post([this] { rebuildPlanner(); });
 }
@@ -230,6 +231,10 @@ void PlannerServer::onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& u
     }
     ++map_version_;
     ++unbuilt_updates_;
+    // applyOccupancyGridUpdate checked that the rectangle lies inside the map.
+    const auto x = static_cast<int>(update->x), y = static_cast<int>(update->y);
+    unbuilt_rect_ = unbuilt_rect_.unite(lat::CellRect{x, y, x + static_cast<int>(update->width),
+                                                      y + static_cast<int>(update->height)});
   }
   builder_->post([this] { rebuildPlanner(); });
 }
@@ -238,7 +243,8 @@ void PlannerServer::rebuildPlanner() {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const lat::GridMap> grid;
   std::uint64_t version = 0, updates = 0;
-  bool full_map = false;
+  bool full_map = false, afresh = false;
+  lat::CellRect changed;
   std::uint32_t width = 0, height = 0;
   double resolution = 0.0;
   std::string error;
@@ -247,8 +253,11 @@ void PlannerServer::rebuildPlanner() {
     version = map_version_;
     updates = unbuilt_updates_;
     full_map = unbuilt_full_map_;
+    changed = unbuilt_rect_;
+    afresh = full_map || build_failed_;
     unbuilt_updates_ = 0;
     unbuilt_full_map_ = false;
+    unbuilt_rect_ = lat::CellRect{};
     width = last_map_.info.width;
     height = last_map_.info.height;
     resolution = last_map_.info.resolution;
@@ -260,13 +269,21 @@ void PlannerServer::rebuildPlanner() {
     }
   }
   // Built off the locks: plans keep using the previous planner until the swap.
+  // The current planner is the last build's (this thread makes them all): after updates alone
+  // it differs from the new map only in `changed`.
+  const auto previous = afresh ? nullptr : currentPlanner();
   std::shared_ptr<lat::LatticePlanner> planner;
   if (grid) {
     try {
-      planner = std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
+      planner = previous ? std::make_shared<lat::LatticePlanner>(*previous, grid, changed)
+                         : std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
     } catch (const std::exception& e) {
       error = e.what();
     }
+  }
+  {
+    std::lock_guard<std::mutex> lock(map_mutex_);
+    build_failed_ = !planner;
   }
   bool have_planner = false;
   {
@@ -298,7 +315,8 @@ void PlannerServer::rebuildPlanner() {
   // Updates can come several times a second (costmap_2d): one line each only when debugging.
   ROS_LOG(full_map ? ros::console::levels::Info : ros::console::levels::Debug,
           ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
-          "ready in %.2f s", what.c_str(), width, height, resolution, seconds);
+          "ready in %.2f s%s", what.c_str(), width, height, resolution, seconds,
+          previous ? " (rebuilt near the change only)" : "");
 }
 
 bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {

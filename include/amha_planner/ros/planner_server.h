@@ -70,6 +70,8 @@ class PlannerServer {
   void onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update);
   /// On the builder thread: builds the planner of the current map (with every update received
   /// so far) and makes it current; a map the lattice refuses is logged and the planner kept.
+  /// After updates alone the new planner is built from the current one, recomputing only the
+  /// part of it the updates can change.
   void rebuildPlanner();
   /// Waits until the planner covers every map and update received so far; false if `cancel`
   /// or shutdown came first.
@@ -98,11 +100,13 @@ class PlannerServer {
   ros::CallbackQueue map_queue_, service_queue_, action_queue_;
   std::unique_ptr<ros::AsyncSpinner> map_spinner_, service_spinner_, action_spinner_;
   ros::Subscriber map_sub_, map_updates_sub_;
-  std::mutex map_mutex_;  ///< guards the four below
+  std::mutex map_mutex_;  ///< guards the six below
   nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map, with its accepted updates
   std::uint64_t map_version_ = 0;     ///< maps and updates accepted into last_map_
   std::uint64_t unbuilt_updates_ = 0; ///< updates accepted since the last build started
+  amha::lattice::CellRect unbuilt_rect_;  ///< the cells they changed
   bool unbuilt_full_map_ = false;     ///< a full map accepted since the last build started
+  bool build_failed_ = false;         ///< the last build failed: the next one starts afresh
   ros::ServiceServer plan_srv_, make_plan_srv_;
   ros::Publisher solutions_pub_, path_pub_, markers_pub_;
   std::unique_ptr<ActionServer> action_server_;
