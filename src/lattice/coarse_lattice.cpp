@@ -55,9 +55,37 @@ CoarseLattice::CoarseLattice(const LatticeGraph& graph, int block) : graph_(grap
     forward_[hs].push_back({block_offset * headings_ + (he - hs), block_offset, cost});
   }
   block_cost_.assign(static_cast<std::size_t>(pw_) * ph_, 255);
-  const GridMap& m = graph.map();
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
+  fillBlocks(CellRect{0, 0, w, h});
+}
+
+CoarseLattice::CoarseLattice(const CoarseLattice& previous, const LatticeGraph& graph,
+                             const CellRect& changed)
+    : graph_(graph),
+      k_(previous.k_),
+      headings_(previous.headings_),
+      pad_(previous.pad_),
+      pw_(previous.pw_),
+      ph_(previous.ph_),
+      block_cost_(previous.block_cost_),
+      reverse_(previous.reverse_),
+      forward_(previous.forward_) {
+  if (!changed.empty()) fillBlocks(changed);
+}
+
+void CoarseLattice::fillBlocks(const CellRect& cells) {
+  const int w = graph_.width(), h = graph_.height();
+  // Whole blocks: a block's cost is the cheapest of all its cells.
+  const int x0 = std::max(cells.x0, 0) / k_ * k_, y0 = std::max(cells.y0, 0) / k_ * k_;
+  const int x1 = std::min((std::min(cells.x1, w) + k_ - 1) / k_ * k_, w);
+  const int y1 = std::min((std::min(cells.y1, h) + k_ - 1) / k_ * k_, h);
+  for (int y = y0; y < y1; y += k_) {
+    for (int x = x0; x < x1; x += k_) {
+      block_cost_[static_cast<std::size_t>(y / k_ + pad_) * pw_ + (x / k_ + pad_)] = 255;
+    }
+  }
+  const GridMap& m = graph_.map();
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
       const std::uint8_t c = m.cost[static_cast<std::size_t>(y) * w + x];
       if (c >= kInscribedCost) continue;  // the robot's centre cannot be there
       std::uint8_t& b = block_cost_[static_cast<std::size_t>(y / k_ + pad_) * pw_ + (x / k_ + pad_)];

@@ -97,6 +97,14 @@ std::size_t GoalHeuristics::bytes() const {
 }
 
 HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
+    : HeuristicGridBuilder(graph, nullptr) {}
+
+HeuristicGridBuilder::HeuristicGridBuilder(const HeuristicGridBuilder& previous,
+                                           const LatticeGraph& graph)
+    : HeuristicGridBuilder(graph, &previous) {}
+
+HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
+                                           const HeuristicGridBuilder* previous)
     : graph_(graph), width_(graph.width()), height_(graph.height()) {
   const LatticeConfig& c = graph.config();
   needed_[0] = c.grid_anchor;
@@ -104,10 +112,10 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
   needed_[2] = c.num_inadmissible >= 2;
   needed_[3] = c.num_inadmissible >= 3;
   // The anchor's grid: cells the centre may occupy (below inscribed), admissible scale.
-  if (needed_[0]) buildKind(0, kAnchorConnectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1);
+  if (needed_[0]) buildKind(0, kAnchorConnectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1, previous);
   const double s = graph.cheapestUnitsPerCell();
   if (needed_[1]) {
-    buildKind(1, 8, s, nullptr, kLethalCost - 1);
+    buildKind(1, 8, s, nullptr, kLethalCost - 1, previous);
     // Without inscribed cells the point robot's grid is the anchor's (same cells, same moves)
     // at another scale: compute it once.
     if (needed_[0] && kAnchorConnectivity == 8 && kinds_[1].level == kinds_[0].level && graph.gridAnchorUnitsPerCell() > 0) {
@@ -116,7 +124,7 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
     }
   }
   if (needed_[2]) {
-    buildKind(2, 8, s, &graph.openedFree(0), kLethalCost - 1);
+    buildKind(2, 8, s, &graph.openedFree(0), kLethalCost - 1, previous);
     if (needed_[1] && kinds_[2].level == kinds_[1].level) {
       alias_[2] = alias_[1];
       scale_[2] = scale_[1];
@@ -127,14 +135,18 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
       alias_[3] = alias_[2];
       scale_[3] = scale_[2];
     } else {
-      buildKind(3, 8, s, &graph.openedFree(1), kLethalCost - 1);
+      buildKind(3, 8, s, &graph.openedFree(1), kLethalCost - 1, previous);
       if (needed_[1] && kinds_[3].level == kinds_[1].level) {
         alias_[3] = alias_[1];
         scale_[3] = scale_[1];
       }
     }
   }
-  if (c.grid_anchor && c.coarse_anchor) coarse_.reset(new CoarseLattice(graph, c.coarse_block));
+  if (c.grid_anchor && c.coarse_anchor) {
+    coarse_.reset(previous != nullptr && previous->coarse_
+                      ? new CoarseLattice(*previous->coarse_, graph, graph.recomputed())
+                      : new CoarseLattice(graph, c.coarse_block));
+  }
   // Identical kinds share their data (and their result).
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (alias_[k] != k) kinds_[k] = Kind();
@@ -142,13 +154,21 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
 }
 
 void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_cell,
-                                     const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class) {
+                                     const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class,
+                                     const HeuristicGridBuilder* previous) {
   Kind& kind = kinds_[k];
   const int pw = width_ + 4, ph = height_ + 4;
   const std::vector<std::uint8_t>& cost = graph_.map().cost;
-  kind.level.assign(static_cast<std::size_t>(pw) * ph, 255);
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) {
+  CellRect cells{0, 0, width_, height_};
+  if (previous != nullptr) {
+    // Kind k's previous levels: its own, or those of the kind it was an alias of (equal).
+    kind.level = previous->kinds_[previous->alias_[k]].level;
+    cells = graph_.recomputed();
+  } else {
+    kind.level.assign(static_cast<std::size_t>(pw) * ph, 255);
+  }
+  for (int y = cells.y0; y < cells.y1; ++y) {
+    for (int x = cells.x0; x < cells.x1; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * width_ + x;
       const std::uint8_t c = cost[i];
       const bool passable = c <= max_cost_class && (mask == nullptr || (*mask)[i]);

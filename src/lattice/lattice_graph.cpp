@@ -211,6 +211,7 @@ std::array<double, 2> LatticeGraph::openingRadii() const {
 }
 
 void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
+  recomputed_ = out;
   const int w = map_->width, h = map_->height;
   const std::size_t cells = static_cast<std::size_t>(w) * h;
   const bool openings = config_.num_inadmissible >= 2;

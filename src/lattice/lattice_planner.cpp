@@ -120,7 +120,7 @@ LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<c
     : impl_(new Impl) {
   impl_->map = map;
   impl_->graph.reset(new LatticeGraph(*previous.impl_->graph, std::move(map), changed));
-  impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
+  impl_->builder.reset(new HeuristicGridBuilder(*previous.impl_->builder, *impl_->graph));
 }
 
 LatticePlanner::~LatticePlanner() = default;

@@ -1,14 +1,16 @@
 // A planner built from the previous one after a local map change (a costmap update) must be
-// the planner a full build gives: the same clearance and openings in every cell, so the same
-// edge costs, heuristics and plans. Checked after chains of random updates (so that errors
+// the planner a full build gives: the same clearance and openings in every cell, the same
+// heuristic grids and coarse abstraction, so the same edge costs, heuristics and plans. Checked after chains of random updates (so that errors
 // cannot pile up unseen), for round and polygonal robots, at the map's edges and corners.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "test_support.h"
@@ -30,6 +32,24 @@ std::string firstDifference(const std::vector<T>& a, const std::vector<T>& b, in
     }
   }
   return "";
+}
+
+// The heuristics of both for a goal: every grid, scale and the coarse abstraction's distances.
+void expectSameHeuristics(const HeuristicGridBuilder& updated, const HeuristicGridBuilder& full,
+                          const LatticeGraph& graph, int gx, int gy, const std::string& what) {
+  if (graph.map().at(gx, gy) >= kInscribedCost) return;
+  const auto a = updated.compute(gx, gy, 0, true, 1);
+  const auto b = full.compute(gx, gy, 0, true, 1);
+  ASSERT_TRUE(a && b) << what;
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    ASSERT_EQ(a->grids[k] == nullptr, b->grids[k] == nullptr) << what << ": grid " << k;
+    if (a->grids[k]) {
+      EXPECT_EQ(firstDifference(a->grids[k]->dist, b->grids[k]->dist, graph.width() + 4), "")
+          << what << ": grid " << k << " for goal (" << gx << ", " << gy << ")";
+    }
+    EXPECT_EQ(a->scale[k], b->scale[k]) << what << ": grid " << k;
+  }
+  EXPECT_EQ(a->coarse, b->coarse) << what << ": coarse abstraction for goal (" << gx << ", " << gy << ")";
 }
 
 void expectSameGraph(const LatticeGraph& updated, const LatticeGraph& full, const std::string& what) {
@@ -72,9 +92,10 @@ TEST(LatticeIncremental, ChainsOfRandomUpdatesGiveTheFullBuildsGraph) {
     std::mt19937 rng(7);
     std::shared_ptr<GridMap> map = test::randomMap(150, 110, 0.05, 3, obstacles, 40);
     auto graph = std::make_unique<LatticeGraph>(map, robot.config);
+    auto builder = std::make_unique<HeuristicGridBuilder>(*graph);
     const std::uint8_t values[] = {0, 0, 17, 120, kInscribedCost, kLethalCost, kLethalCost,
                                    kUnknownCost};
-    for (int step = 0; step < 30; ++step) {
+    for (int step = 0; step < 24; ++step) {
       // Rectangles of 1..45 cells a side anywhere, some sticking out of the map (clipped).
       std::uniform_int_distribution<int> side(1, 45), px(-10, map->width), py(-10, map->height);
       CellRect r;
@@ -92,15 +113,24 @@ TEST(LatticeIncremental, ChainsOfRandomUpdatesGiveTheFullBuildsGraph) {
         }
       }
       auto updated = std::make_unique<LatticeGraph>(*graph, next, r);
+      auto updated_builder = std::make_unique<HeuristicGridBuilder>(*builder, *updated);
       const LatticeGraph full(next, robot.config);
-      expectSameGraph(*updated, full,
-                      std::string(robot.name) + ", " + std::to_string(obstacles) +
-                          " obstacles, update " + std::to_string(step) + " (" +
-                          std::to_string(r.x0) + ", " + std::to_string(r.y0) + ") - (" +
-                          std::to_string(r.x1) + ", " + std::to_string(r.y1) + ")");
+      const HeuristicGridBuilder full_builder(full);
+      const std::string what = std::string(robot.name) + ", " + std::to_string(obstacles) +
+                               " obstacles, update " + std::to_string(step) + " (" +
+                               std::to_string(r.x0) + ", " + std::to_string(r.y0) + ") - (" +
+                               std::to_string(r.x1) + ", " + std::to_string(r.y1) + ")";
+      expectSameGraph(*updated, full, what);
+      // A goal at the change; now and then one far from it.
+      const int gx = std::clamp(r.x0, 0, map->width - 1), gy = std::clamp(r.y0, 0, map->height - 1);
+      expectSameHeuristics(*updated_builder, full_builder, full, gx, gy, what);
+      if (step % 6 == 5) {
+        expectSameHeuristics(*updated_builder, full_builder, full, map->width / 2, map->height / 2, what);
+      }
       if (HasFailure()) return;
       map = next;
       graph = std::move(updated);
+      builder = std::move(updated_builder);
     }
   }
 }

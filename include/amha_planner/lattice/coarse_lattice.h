@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "amha_planner/lattice/lattice_planner.h"
+
 namespace amha {
 namespace lattice {
 
@@ -22,6 +24,9 @@ class CoarseLattice {
  public:
   /// block: cells per block side (>= 1; 0 = the smallest >= 2 giving at most 250k abstract states).
   CoarseLattice(const LatticeGraph& graph, int block);
+  /// The abstraction of `graph`, whose costs differ from previous's graph's only in `changed`:
+  /// the previous one's edges and blocks, with the blocks that meet `changed` recomputed.
+  CoarseLattice(const CoarseLattice& previous, const LatticeGraph& graph, const CellRect& changed);
 
   int block() const { return k_; }
   /// Distances (cost units) of every abstract state to the goal's (forward = false), or from
@@ -40,6 +45,9 @@ class CoarseLattice {
     std::int64_t block_offset;  // other block index - block index
     std::int64_t base_cost;
   };
+  /// Recomputes the blocks that hold cells of `cells`.
+  void fillBlocks(const CellRect& cells);
+
   const LatticeGraph& graph_;
   int k_ = 1, headings_ = 1, pad_ = 0, pw_ = 0, ph_ = 0;
   std::vector<std::uint8_t> block_cost_;  // padded; cheapest passable cell, 255 = none

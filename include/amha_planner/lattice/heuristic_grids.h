@@ -93,6 +93,9 @@ struct GridStop {
 class HeuristicGridBuilder {
  public:
   explicit HeuristicGridBuilder(const LatticeGraph& graph);
+  /// The builder of `graph`, a graph built from previous's graph (LatticeGraph's incremental
+  /// constructor): previous's tables, recomputed on graph.recomputed() only.
+  HeuristicGridBuilder(const HeuristicGridBuilder& previous, const LatticeGraph& graph);
   /// Computes the anchor's tables and, if `inadmissible`, the inadmissible grids the
   /// configuration asks for, in parallel (up to `threads`, 0 = all hardware threads).
   /// `backward`: the tables are for a backward search, i.e. distances from (x, y, heading).
@@ -115,8 +118,11 @@ class HeuristicGridBuilder {
     std::uint32_t max_step = 0;
   };
   static constexpr int kMaxRequired = 4;
+  HeuristicGridBuilder(const LatticeGraph& graph, const HeuristicGridBuilder* previous);
+  /// Builds kind k's tables; its levels from the map, or from `previous` (whose levels for kind
+  /// k are the previous map's) where graph_.recomputed() says nothing changed.
   void buildKind(int k, int connectivity, double units_per_cell, const std::vector<std::uint8_t>* mask,
-                 std::uint8_t max_cost_class);
+                 std::uint8_t max_cost_class, const HeuristicGridBuilder* previous);
   // These return false when `stop` asked to stop (the grid is then incomplete).
   bool run(const Kind& kind, int goal_x, int goal_y, std::vector<std::uint32_t>& grid, const GridStop* stop = nullptr) const;
   template <class Queue>

@@ -116,6 +116,10 @@ class LatticeGraph {
   /// at clearanceCap() (only comparisons with sweep radii below it matter).
   const std::vector<float>& clearance() const { return clearance_; }
   float clearanceCap() const { return clearance_cap_; }
+  /// The cells whose clearance and openings this graph computed: all of them, or for a graph
+  /// built from a previous one, those the change could reach (the rest are the previous
+  /// graph's; they and the map's costs are equal there).
+  const CellRect& recomputed() const { return recomputed_; }
   /// Free space (1) opened by the inscribed (index 0) / circumscribed (index 1) radius.
   const std::vector<std::uint8_t>& openedFree(int which) const { return opened_[which]; }
   /// True when the two openings are the same cells (then the heuristics share one grid).
@@ -146,6 +150,7 @@ class LatticeGraph {
   std::vector<std::int64_t> penalty_q_;              // 256 entries: Q[c]
   std::vector<float> clearance_;
   float clearance_cap_ = 0.0f;
+  CellRect recomputed_;
   std::vector<std::uint8_t> opened_[2];
   bool openings_equal_ = false;
   double euclid_per_cell_ = 0.0, grid_anchor_per_cell_ = 0.0, cheapest_per_cell_ = 0.0;
