@@ -10,6 +10,7 @@
 #include <tf2/LinearMath/Quaternion.h>
 #include <tf2/utils.h>
 
+#include "amha_planner/lattice/map_loaders.h"  // occupancyToCost
 #include "amha_planner/ros/planner_params.h"  // normaliseFrame
 
 namespace amha_planner {
@@ -43,6 +44,31 @@ lat::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
                                    static_cast<int>(msg.info.height), msg.info.resolution,
                                    o.position.x, o.position.y, yaw, msg.data.data(),
                                    msg.data.size(), conversion, max_cells);
+}
+
+void convertOccupancyCells(const nav_msgs::OccupancyGrid& msg, const lat::CellRect& rect,
+                           const lat::OccupancyConversion& conversion, lat::GridMap* grid) {
+  const std::uint64_t w = msg.info.width, h = msg.info.height;
+  if (static_cast<std::uint64_t>(grid->width) != w || static_cast<std::uint64_t>(grid->height) != h ||
+      msg.data.size() != w * h || grid->cost.size() != w * h) {
+    throw lat::LatticeError(lat::LatticeError::Kind::kMap,
+                            "map cells: the grid and the message differ in size");
+  }
+  if (rect.empty()) return;
+  if (rect.x0 < 0 || rect.y0 < 0 || static_cast<std::uint64_t>(rect.x1) > w ||
+      static_cast<std::uint64_t>(rect.y1) > h) {
+    throw lat::LatticeError(lat::LatticeError::Kind::kMap, "map cells: rectangle leaves the map");
+  }
+  std::uint8_t table[256];
+  for (int v = -128; v < 128; ++v) {
+    table[static_cast<std::uint8_t>(v)] = lat::occupancyToCost(v, conversion);
+  }
+  for (int y = rect.y0; y < rect.y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * w;
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      grid->cost[row + x] = table[static_cast<std::uint8_t>(msg.data[row + x])];
+    }
+  }
 }
 
 void applyOccupancyGridUpdate(const map_msgs::OccupancyGridUpdate& update,

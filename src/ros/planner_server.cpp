@@ -243,18 +243,21 @@ void PlannerServer::rebuildPlanner() {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<const lat::GridMap> grid;
   std::uint64_t version = 0, updates = 0;
-  bool full_map = false, afresh = false;
+  bool full_map = false;
   lat::CellRect changed;
   std::uint32_t width = 0, height = 0;
   double resolution = 0.0;
   std::string error;
+  // The current planner is the last build's (this thread makes them all): after updates alone
+  // its map differs from the new one only in the updates' rectangle.
+  auto previous = currentPlanner();
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
     version = map_version_;
     updates = unbuilt_updates_;
     full_map = unbuilt_full_map_;
     changed = unbuilt_rect_;
-    afresh = full_map || build_failed_;
+    if (full_map || build_failed_) previous = nullptr;
     unbuilt_updates_ = 0;
     unbuilt_full_map_ = false;
     unbuilt_rect_ = lat::CellRect{};
@@ -262,16 +265,19 @@ void PlannerServer::rebuildPlanner() {
     height = last_map_.info.height;
     resolution = last_map_.info.resolution;
     try {
-      grid = std::make_shared<const lat::GridMap>(
-          gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
+      if (previous) {  // only the changed cells are converted again
+        auto patched = std::make_shared<lat::GridMap>(previous->map());
+        convertOccupancyCells(last_map_, changed, params_.occupancy, patched.get());
+        grid = std::move(patched);
+      } else {
+        grid = std::make_shared<const lat::GridMap>(
+            gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
+      }
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
   // Built off the locks: plans keep using the previous planner until the swap.
-  // The current planner is the last build's (this thread makes them all): after updates alone
-  // it differs from the new map only in `changed`.
-  const auto previous = afresh ? nullptr : currentPlanner();
   std::shared_ptr<lat::LatticePlanner> planner;
   if (grid) {
     try {

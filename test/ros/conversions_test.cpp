@@ -171,6 +171,31 @@ TEST(MapUpdate, BadUpdatesAreRefusedWithAReasonAndChangeNothing) {
   expectRefused(u, "frame 'odom' is not the map's frame 'map'");
 }
 
+TEST(MapUpdate, ConvertingOnlyTheChangedCellsGivesTheFullConversion) {
+  namespace lat = amha::lattice;
+  nav_msgs::OccupancyGrid before = grid(7, 5, 0.0);
+  for (std::size_t i = 0; i < before.data.size(); ++i) before.data[i] = static_cast<std::int8_t>(i * 7 % 101);
+  lat::OccupancyConversion conversion;
+  conversion.lethal_threshold = 50;
+  const lat::GridMap old_grid = gridMapFromOccupancy(before, conversion, 1000);
+  nav_msgs::OccupancyGrid after = before;
+  applyOccupancyGridUpdate(gridUpdate(2, 1, 3, 3, 45), &after);  // 45..53: across the threshold
+  lat::GridMap patched = old_grid;
+  convertOccupancyCells(after, lat::CellRect{2, 1, 5, 4}, conversion, &patched);
+  EXPECT_EQ(patched.cost, gridMapFromOccupancy(after, conversion, 1000).cost);
+  EXPECT_NE(patched.cost, old_grid.cost);
+  // A rectangle outside the map or a grid of another size is refused, the grid unchanged.
+  const lat::GridMap kept = patched;
+  EXPECT_THROW(convertOccupancyCells(after, lat::CellRect{5, 0, 8, 2}, conversion, &patched),
+               lat::LatticeError);
+  EXPECT_THROW(convertOccupancyCells(after, lat::CellRect{-1, 0, 2, 2}, conversion, &patched),
+               lat::LatticeError);
+  lat::GridMap other = gridMapFromOccupancy(grid(6, 5, 0.0), conversion, 1000);
+  EXPECT_THROW(convertOccupancyCells(after, lat::CellRect{0, 0, 1, 1}, conversion, &other),
+               lat::LatticeError);
+  EXPECT_EQ(patched.cost, kept.cost);
+}
+
 TEST(Conversions, CostsAreReportedInMetres) {
   amha::lattice::LatticeSolution s;
   s.search.cost = 12345;

@@ -28,6 +28,12 @@ amha::lattice::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
                                             const amha::lattice::OccupancyConversion& conversion,
                                             std::size_t max_cells);
 
+/// Converts the cells of `rect` of `msg` into `grid`, a GridMap of msg's size (e.g. a copy of
+/// the GridMap of an earlier version of msg), so that only changed cells are converted again.
+/// Throws amha::lattice::LatticeError if the sizes differ or `rect` leaves the map.
+void convertOccupancyCells(const nav_msgs::OccupancyGrid& msg, const amha::lattice::CellRect& rect,
+                           const amha::lattice::OccupancyConversion& conversion,
+                           amha::lattice::GridMap* grid);
 /// Writes a partial update (costmap_2d's `<topic>_updates`, as rviz reads them) into `grid`:
 /// the cells of the rectangle (x, y, width, height), row by row. Throws
 /// amha::lattice::LatticeError naming the problem, leaving `grid` unchanged, if the data
