@@ -3,7 +3,8 @@
 
 For a bounded time (and at most --max-requests requests) it fires random requests, valid and
 invalid, at ~plan, ~plan_anytime (with random cancels) and ~make_plan from several threads,
-while publishing random map updates (good and malformed). Every answer must be a valid path
+while publishing random maps and partial map updates on /map_updates (good and malformed; the
+server applies good updates incrementally). Every answer must be a valid path
 within its bounds or a clean error status; the node must stay alive; its memory must not grow.
 
 A path is checked independently of the planner: in the global frame, starting at the start and
@@ -32,6 +33,7 @@ import rosgraph
 import rospy
 from actionlib_msgs.msg import GoalStatus
 from geometry_msgs.msg import PoseStamped
+from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan, GetPlanRequest
 
@@ -149,6 +151,39 @@ def synthetic_map(rng, seq):
     return m
 
 
+def partial_update(rng, good):
+    """A costmap-style update of a random rectangle of `good` (blocked, cleared, unknown or mixed
+    cells), and the map it makes, or (update, None) for one with a defect the server must refuse
+    (the map stays as it was)."""
+    w, h = good.info.width, good.info.height
+    uw, uh = rng.randint(1, min(60, w)), rng.randint(1, min(60, h))
+    u = OccupancyGridUpdate()
+    u.header.frame_id = good.header.frame_id
+    u.x, u.y, u.width, u.height = rng.randint(0, w - uw), rng.randint(0, h - uh), uw, uh
+    mode = rng.choice(["block", "clear", "unknown", "mixed"])
+    fill = {"block": [100], "clear": [0], "unknown": [-1], "mixed": [0, 0, 30, 100, -1]}[mode]
+    u.data = [rng.choice(fill) for _ in range(uw * uh)]
+    kind = rng.choices(["valid", "short_data", "past_right_edge", "negative_y", "other_frame"],
+                       weights=[80, 5, 5, 5, 5])[0]
+    if kind == "short_data":
+        u.data = u.data[:-1]
+    elif kind == "past_right_edge":
+        u.x = w - uw + 1
+    elif kind == "negative_y":
+        u.y = -1
+    elif kind == "other_frame":
+        u.header.frame_id = "odom"
+    if kind != "valid":
+        return u, None, "update_" + kind
+    data = list(good.data)
+    for r in range(uh):
+        start = (u.y + r) * w + u.x
+        data[start:start + uw] = u.data[r * uw:(r + 1) * uw]
+    m = OccupancyGrid()
+    m.header, m.info, m.data = good.header, good.info, data
+    return u, m, "update_" + mode
+
+
 def malformed_map(rng, good):
     """A copy of `good` with one defect the server must refuse (it keeps the previous map)."""
     m = OccupancyGrid()
@@ -198,7 +233,8 @@ class Soak:
         self.lock = threading.Lock()
         self.stats = {"requests": 0, "by_interface": {}, "by_kind": {}, "answers": {}, "answers_by_kind": {},
                       "paths_checked": 0, "solutions_checked": 0, "cancels_sent": 0, "cancel_latency_running_s": [],
-                      "map_updates": {"valid": 0, "malformed": {}}, "failures": [], "rss_kb": [], "checkpoints": []}
+                      "map_updates": {"valid": 0, "malformed": {}}, "updates_sent": {}, "failures": [], "rss_kb": [],
+                      "checkpoints": []}
         self.maps = []          # (time published, Grid) of every valid map, in order
         self.current = None     # the last valid Grid published
         self.stop = threading.Event()
@@ -206,6 +242,8 @@ class Soak:
         self.in_flight = 0
         self.node_pid = None
         self.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
+        # Partial updates, as costmap_2d sends them (the server folds and applies them in order).
+        self.update_pub = rospy.Publisher("/map_updates", OccupancyGridUpdate, queue_size=10)
 
     # ---- bookkeeping
     def count(self, key, sub, n=1):
@@ -562,14 +600,17 @@ class Soak:
                     self.in_flight -= 1
 
     # ---- maps
-    def publish_valid(self, msg, name):
+    def publish_valid(self, msg, name, update=None):
         g = Grid(msg, name)
         with self.lock:
             self.maps.append((time.time(), g))
             del self.maps[:-40]  # requests last seconds; maps minutes
             self.current = g
             self.stats["map_updates"]["valid"] += 1
-        self.map_pub.publish(msg)
+        if update is None:
+            self.map_pub.publish(msg)
+        else:
+            self.update_pub.publish(update)
 
     def mapper(self):
         rng = random.Random(self.args.seed + 7)
@@ -579,11 +620,24 @@ class Soak:
                 continue
             seq += 1
             r = rng.random()
-            if r < 0.4:
+            if r < 0.3:
                 self.publish_valid(self.willow, "willow")
-            elif r < 0.7:
+            elif r < 0.5:
                 msg = synthetic_map(rng, seq)
                 self.publish_valid(msg, "synthetic-%d" % seq)
+            elif r < 0.8:
+                # One to three partial updates of the current map, back to back. They follow a
+                # full map by at least 2 s, so the server has it by then (topics are not ordered
+                # with each other).
+                for _ in range(rng.randint(1, 3)):
+                    update, msg, kind = partial_update(rng, self.current.msg)
+                    self.count("updates_sent", kind)
+                    if msg is None:
+                        self.count_malformed(kind)
+                        self.update_pub.publish(update)
+                    else:
+                        self.publish_valid(msg, "%s+%s-%d" % (self.current.name.split("+")[0], kind, seq),
+                                           update)
             else:
                 msg, kind = malformed_map(rng, self.current.msg)
                 self.count_malformed(kind)
