@@ -84,9 +84,14 @@ def main():
                                            lat.get("median_ms", float("nan")), lat.get("max_ms", float("nan"))))
     mu = d["map_updates"]
     bad = mu.get("malformed", {})
-    w("- Map updates while planning: %d valid (the Willow Garage map or random synthetic maps), "
-      "%d malformed, all refused with the current map kept: %s.\n" % (
-          mu.get("valid", 0), sum(bad.values()), ", ".join("%s %d" % kv for kv in sorted(bad.items()))))
+    sent = d.get("updates_sent", {})  # partial updates (runs before they were sent have none)
+    good_partial = sum(n for k, n in sent.items() if k not in bad)
+    w("- Map changes while planning: %d valid (the Willow Garage map, random synthetic maps, and "
+      "%d partial updates of the current map: %s), %d malformed maps and updates, all refused with "
+      "the current map kept: %s.\n" % (
+          mu.get("valid", 0), good_partial,
+          ", ".join("%s %d" % kv for kv in sorted(sent.items()) if kv[0] not in bad) or "none",
+          sum(bad.values()), ", ".join("%s %d" % kv for kv in sorted(bad.items()))))
 
     w("## Memory\n")
     w("At the start, middle and end the script pauses the traffic, sends the same map and two "
