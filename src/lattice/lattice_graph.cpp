@@ -78,23 +78,9 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
 
 LatticeGraph::LatticeGraph(const LatticeGraph& previous, std::shared_ptr<const GridMap> map,
                            const CellRect& changed)
-    : map_(std::move(map)),
-      config_(previous.config_),
-      primitives_(previous.primitives_),
-      footprint_(previous.footprint_),
-      actions_(previous.actions_),
-      action_index_(previous.action_index_),
-      action_cells_(previous.action_cells_),
-      offsets_(previous.offsets_),
-      rest_cells_(previous.rest_cells_),
-      penalty_q_(previous.penalty_q_),
-      clearance_(previous.clearance_),
-      clearance_cap_(previous.clearance_cap_),
-      euclid_per_cell_(previous.euclid_per_cell_),
-      grid_anchor_per_cell_(previous.grid_anchor_per_cell_),
-      cheapest_per_cell_(previous.cheapest_per_cell_),
-      euclid_turn_per_rad_(previous.euclid_turn_per_rad_),
-      grid_turn_per_rad_(previous.grid_turn_per_rad_) {
+    : LatticeGraph(previous) {
+  map_ = std::move(map);
+  recomputed_ = CellRect{};
   if (!map_) fail(LatticeError::Kind::kMap, "map: null");
   validateMap(*map_);
   const GridMap& a = previous.map();
@@ -104,9 +90,6 @@ LatticeGraph::LatticeGraph(const LatticeGraph& previous, std::shared_ptr<const G
       a.origin_x != b.origin_x || a.origin_y != b.origin_y || a.origin_yaw != b.origin_yaw) {
     fail(LatticeError::Kind::kMap, "map update: the map's size, resolution or origin changed");
   }
-  opened_[0] = previous.opened_[0];
-  opened_[1] = previous.opened_[1];
-  openings_equal_ = previous.openings_equal_;
   linkActionsInto();
   const CellRect inside{std::max(changed.x0, 0), std::max(changed.y0, 0),
                         std::min(changed.x1, b.width), std::min(changed.y1, b.height)};

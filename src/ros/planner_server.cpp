@@ -188,9 +188,12 @@ void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& 
 }
 
 void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
-  // Checked here, so that a malformed map never replaces a good one; built on the builder.
+  // Checked (converted) here, so that a malformed map never replaces a good one; the planner
+  // is built from this grid on the builder thread.
+  std::shared_ptr<const lat::GridMap> grid;
   try {
-    gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells);
+    grid = std::make_shared<const lat::GridMap>(
+        gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells));
   } catch (const std::exception& e) {
     ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
               msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(), e.what(),
@@ -207,7 +210,7 @@ void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(map_mutex_);
     last_map_ = *msg;
     ++map_version_;
-    unbuilt_full_map_ = true;
+    unbuilt_grid_ = std::move(grid);
     unbuilt_updates_ = 0;  // the updates before it are overwritten
     unbuilt_rect_ = lat::CellRect{};
   }
@@ -255,21 +258,27 @@ void PlannerServer::rebuildPlanner() {
     std::lock_guard<std::mutex> lock(map_mutex_);
     version = map_version_;
     updates = unbuilt_updates_;
-    full_map = unbuilt_full_map_;
     changed = unbuilt_rect_;
+    const std::shared_ptr<const lat::GridMap> full_grid = std::move(unbuilt_grid_);
+    full_map = full_grid != nullptr;
     if (full_map || build_failed_) previous = nullptr;
     unbuilt_updates_ = 0;
-    unbuilt_full_map_ = false;
+    unbuilt_grid_ = nullptr;
     unbuilt_rect_ = lat::CellRect{};
     width = last_map_.info.width;
     height = last_map_.info.height;
     resolution = last_map_.info.resolution;
+    // `changed` is relative to the full map's grid, or else to the previous planner's map;
+    // only its cells are converted again.
+    const lat::GridMap* base = full_map ? full_grid.get() : previous ? &previous->map() : nullptr;
     try {
-      if (previous) {  // only the changed cells are converted again
-        auto patched = std::make_shared<lat::GridMap>(previous->map());
+      if (full_map && changed.empty()) {
+        grid = full_grid;
+      } else if (base != nullptr) {
+        auto patched = std::make_shared<lat::GridMap>(*base);
         convertOccupancyCells(last_map_, changed, params_.occupancy, patched.get());
         grid = std::move(patched);
-      } else {
+      } else {  // after a failed build: the current planner's map may be an older one
         grid = std::make_shared<const lat::GridMap>(
             gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
       }

@@ -217,7 +217,9 @@ TEST(LatticeIncremental, AnUpdatedPlannerPlansLikeAFreshOne) {
   EXPECT_EQ(a.search.status, b.search.status);
   EXPECT_EQ(a.search.expansions, b.search.expansions);
   ASSERT_EQ(a.solutions.size(), b.solutions.size());
-  if (!a.solutions.empty()) EXPECT_EQ(a.solutions.back().search.cost, b.solutions.back().search.cost);
+  if (!a.solutions.empty()) {
+    EXPECT_EQ(a.solutions.back().search.cost, b.solutions.back().search.cost);
+  }
 }
 
 }  // namespace

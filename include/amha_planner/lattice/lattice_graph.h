@@ -45,7 +45,6 @@ class LatticeGraph {
   /// the change can reach are recomputed.
   LatticeGraph(const LatticeGraph& previous, std::shared_ptr<const GridMap> map,
                const CellRect& changed);
-  LatticeGraph(const LatticeGraph&) = delete;
   LatticeGraph& operator=(const LatticeGraph&) = delete;
 
   const GridMap& map() const { return *map_; }
@@ -126,6 +125,9 @@ class LatticeGraph {
   bool openingsEqual() const { return openings_equal_; }
 
  private:
+  /// Member-wise, for the incremental constructor only (actionsInto() must then be relinked:
+  /// it points into the copied-from graph's actions).
+  LatticeGraph(const LatticeGraph&) = default;
   void buildActions();
   void linkActionsInto();
   /// The radii (cells) of the two openings.

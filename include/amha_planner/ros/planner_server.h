@@ -100,12 +100,14 @@ class PlannerServer {
   ros::CallbackQueue map_queue_, service_queue_, action_queue_;
   std::unique_ptr<ros::AsyncSpinner> map_spinner_, service_spinner_, action_spinner_;
   ros::Subscriber map_sub_, map_updates_sub_;
-  std::mutex map_mutex_;  ///< guards the six below
+  std::mutex map_mutex_;  ///< guards the seven below
   nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map, with its accepted updates
+  /// The grid of the full map accepted since the last build started (as it came, without the
+  /// updates after it), converted once when it was checked; null if none.
+  std::shared_ptr<const amha::lattice::GridMap> unbuilt_grid_;
   std::uint64_t map_version_ = 0;     ///< maps and updates accepted into last_map_
   std::uint64_t unbuilt_updates_ = 0; ///< updates accepted since the last build started
   amha::lattice::CellRect unbuilt_rect_;  ///< the cells they changed
-  bool unbuilt_full_map_ = false;     ///< a full map accepted since the last build started
   bool build_failed_ = false;         ///< the last build failed: the next one starts afresh
   ros::ServiceServer plan_srv_, make_plan_srv_;
   ros::Publisher solutions_pub_, path_pub_, markers_pub_;
