@@ -55,6 +55,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/heuristics_test.cpp
     test/lattice/planner_test.cpp
     test/lattice/incremental_map_test.cpp
+    test/lattice/heuristic_repair_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
 

@@ -183,8 +183,11 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   kind.either_side.clear();
   kind.step.assign(moves.size() * 256, 0);
   kind.max_step = 0;
+  kind.min_step = std::numeric_limits<std::uint32_t>::max();
+  kind.reach = 0;
   for (std::size_t m = 0; m < moves.size(); ++m) {
     const GridMove& mv = moves[m];
+    kind.reach = std::max({kind.reach, std::abs(mv.dx), std::abs(mv.dy)});
     kind.move_offsets.push_back(static_cast<std::int64_t>(mv.dy) * pw + mv.dx);
     int count = 0;
     for (const CellOffset& r : mv.required) {
@@ -201,7 +204,10 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
     for (int c = 0; c < 256; ++c) {
       const double step = units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));
-      if (c <= 252) kind.max_step = std::max(kind.max_step, kind.step[m * 256 + c]);
+      if (c <= 252) {
+        kind.max_step = std::max(kind.max_step, kind.step[m * 256 + c]);
+        kind.min_step = std::min(kind.min_step, kind.step[m * 256 + c]);
+      }
     }
   }
 }
@@ -235,6 +241,8 @@ class DialQueue {
     const std::vector<std::uint32_t>& b = buckets_[cur_ & mask_];
     return b.size() > ahead ? b[b.size() - 1 - ahead] : fallback;
   }
+  /// The key of the last pop (0 before the first): the largest, the queue being monotone.
+  std::uint32_t lastPopped() const { return cur_; }
 
  private:
   std::vector<std::vector<std::uint32_t>> buckets_;
@@ -245,8 +253,7 @@ class DialQueue {
 }  // namespace
 
 template <class Queue>
-bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
-                                    const GridStop* stop) const {
+bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
@@ -254,8 +261,6 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
   const int* req_count = kind.required_count.data();
   const char* either = kind.either_side.data();
   const std::uint32_t* step = kind.step.data();
-  dist[goal] = 0;
-  queue.push(0, goal);
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [d, i] = queue.pop();
     if (d != dist[i]) continue;
@@ -298,8 +303,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t goal, std::u
 constexpr std::size_t kPrefetchAhead = 4;
 
 template <class Queue>
-bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue,
-                                     const GridStop* stop) const {
+bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -311,8 +315,6 @@ bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
   const std::uint32_t* s_nw = step + 5 * 256;
   const std::uint32_t* s_n = step + 6 * 256;
   const std::uint32_t* s_ne = step + 7 * 256;
-  dist[goal] = 0;
-  queue.push(0, goal);
   for (std::uint32_t pops = 0; !queue.empty();) {
     // Not a structured binding: clang before 16 cannot capture one in the lambda below.
     const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
@@ -361,45 +363,211 @@ bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t goal, std::
   return true;
 }
 
-bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, std::vector<std::uint32_t>& grid,
-                               const GridStop* stop) const {
+bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid, const GridStop* stop) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
-  // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
-  // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
-  grid.clear();
-  grid.reserve(total);
-  constexpr std::size_t kSlice = std::size_t{1} << 20;
-  for (std::size_t filled = 0; filled < total; filled += kSlice) {
-    if (stop != nullptr && stop->requested()) return false;
-    grid.insert(grid.end(), std::min(kSlice, total - filled), kUnreachable);
-  }
-  std::uint32_t* dist = grid.data();
+  grid.width = width_;
+  grid.height = height_;
+  grid.max_distance = 0;
+  if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
+  std::uint32_t* dist = grid.dist.data();
   const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
   if (kind.level[goal] == 255) return true;
   const bool eight = kind.move_offsets.size() == 8;
+  // Every finite distance is popped, the largest last.
+  auto search = [&](auto& queue) {
+    queue.push(0, goal);
+    const bool complete = eight ? dijkstra8(kind, dist, queue, stop) : dijkstra(kind, dist, queue, stop);
+    grid.max_distance = queue.lastPopped();
+    return complete;
+  };
   // Dial's queue needs every key within max_step of the current one, so it is used only when
   // no distance can reach the saturation value.
-  if (kind.max_step < 4096 && static_cast<std::uint64_t>(total) * kind.max_step < kUnreachable - 1) {
+  dist[goal] = 0;
+  if (kind.max_step < 4096 && !canSaturate(kind)) {
     DialQueue q(kind.max_step);
-    return eight ? dijkstra8(kind, goal, dist, q, stop) : dijkstra(kind, goal, dist, q, stop);
+    return search(q);
   }
   detail::RadixHeap q;
-  return eight ? dijkstra8(kind, goal, dist, q, stop) : dijkstra(kind, goal, dist, q, stop);
+  return search(q);
+}
+
+bool HeuristicGridBuilder::fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
+                               const std::vector<std::uint32_t>* source, const GridStop* stop) const {
+  // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
+  // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
+  grid.clear();
+  grid.reserve(count);
+  constexpr std::size_t kSlice = std::size_t{1} << 20;
+  for (std::size_t filled = 0; filled < count; filled += kSlice) {
+    if (stop != nullptr && stop->requested()) return false;
+    const std::size_t n = std::min(kSlice, count - filled);
+    if (source != nullptr) {
+      grid.insert(grid.end(), source->begin() + filled, source->begin() + filled + n);
+    } else {
+      grid.insert(grid.end(), n, value);
+    }
+  }
+  return true;
+}
+
+bool HeuristicGridBuilder::canSaturate(const Kind& kind) const {
+  const std::uint64_t total = static_cast<std::uint64_t>(width_ + 4) * (height_ + 4);
+  return total * kind.max_step >= kUnreachable - 1;
+}
+
+std::uint32_t HeuristicGridBuilder::moveCost(const Kind& kind, std::size_t i, std::size_t m) const {
+  const std::uint8_t* level = kind.level.data();
+  const unsigned li = level[i];
+  unsigned c = level[static_cast<std::size_t>(static_cast<std::int64_t>(i) + kind.move_offsets[m])];
+  if (li == 255 || c == 255) return kUnreachable;
+  c = std::max(c, li);
+  const std::int64_t* r = kind.required.data() + m * kMaxRequired;
+  const std::int64_t si = static_cast<std::int64_t>(i);
+  if (kind.either_side[m]) {
+    const unsigned side = std::min(level[si + r[0]], level[si + r[1]]);
+    if (side == 255) return kUnreachable;
+    c = std::max(c, side);
+  } else {
+    for (int k = 0; k < kind.required_count[m]; ++k) {
+      const unsigned lr = level[si + r[k]];
+      if (lr == 255) return kUnreachable;
+      c = std::max(c, lr);
+    }
+  }
+  return kind.step[m * 256 + c];
+}
+
+// Repairs a grid after a change (a dynamic shortest-path update in two waves, as in LPA* or
+// dynamic brushfire), exactly: the result is the grid run() computes on the new levels.
+//  1. Raise: a cell's old distance still holds if some predecessor that still holds its own
+//     reaches it over a move of the new map at exactly that distance. Only the cells near the
+//     change (whose moves may cost something else now) and the cells that relied on a cell
+//     found not to hold can fail that test; they are visited in increasing old distance, so
+//     every predecessor is decided first (moves cost at least 1), and those that fail become
+//     unreachable.
+//  2. Lower: Dijkstra from every cell near the change and every cell next to one that failed,
+//     with their distances, which are all reachable on the new map; it lowers the distances that
+//     the change shortened and fills the failed cells in again.
+// The grids are distances from the goal, so "predecessor" follows dijkstra()'s relaxation: the
+// distance of j = i + move m is at most dist[i] + moveCost(i, m).
+bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const DistanceGrid& old,
+                                      const std::vector<CellRect>& changed, DistanceGrid& grid,
+                                      const GridStop* stop) const {
+  const int pw = width_ + 4;
+  const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
+  // Saturated distances (kUnreachable - 1, old or new) break the equality test, and a step of 0
+  // would let two cells hold each other up: such grids are computed in full (neither happens on
+  // real maps: saturation takes a path of millions of cells).
+  constexpr std::uint32_t kSaturated = kUnreachable - 1;
+  if (old.dist.size() != total || kind.min_step == 0 || old.max_distance >= kSaturated) {
+    return run(kind, gx, gy, grid, stop);
+  }
+  if (&grid != &old) {
+    grid.width = width_;
+    grid.height = height_;
+    if (!fill(grid.dist, total, 0, &old.dist, stop)) return false;
+  }
+  std::uint32_t* dist = grid.dist.data();
+  const std::uint8_t* level = kind.level.data();
+  const std::size_t nm = kind.move_offsets.size();
+  const std::int64_t* off = kind.move_offsets.data();
+  const std::size_t goal = static_cast<std::size_t>(gy + 2) * pw + (gx + 2);
+  // The cells whose moves (to or from them) may cost something else: a move's cells lie in the
+  // box between its two ends.
+  std::vector<CellRect> near;
+  for (const CellRect& r : changed) {
+    const CellRect d{std::max(0, r.x0 - kind.reach), std::max(0, r.y0 - kind.reach),
+                     std::min(width_, r.x1 + kind.reach), std::min(height_, r.y1 + kind.reach)};
+    if (d.x0 < d.x1 && d.y0 < d.y1) near.push_back(d);
+  }
+  auto forNear = [&](auto&& f) {
+    for (const CellRect& r : near) {
+      for (int y = r.y0; y < r.y1; ++y) {
+        for (int x = r.x0; x < r.x1; ++x) f(static_cast<std::size_t>(y + 2) * pw + (x + 2));
+      }
+    }
+  };
+  auto holds = [&](std::size_t c) {
+    if (level[c] == 255) return false;
+    if (c == goal) return true;
+    for (std::size_t m = 0; m < nm; ++m) {
+      const std::size_t i = static_cast<std::size_t>(static_cast<std::int64_t>(c) - off[m]);
+      if (dist[i] == kUnreachable) continue;
+      const std::uint32_t w = moveCost(kind, i, m);
+      if (w != kUnreachable && static_cast<std::uint64_t>(dist[i]) + w == dist[c]) return true;
+    }
+    return false;
+  };
+  std::uint32_t pops = 0;
+  auto stopped = [&] { return (++pops & 4095) == 0 && stop != nullptr && stop->requested(); };
+  // 1. Raise.
+  std::vector<std::uint32_t> failed;
+  {
+    detail::RadixHeap queue;
+    forNear([&](std::size_t c) {
+      if (dist[c] != kUnreachable) queue.push(dist[c], static_cast<std::uint32_t>(c));
+    });
+    while (!queue.empty()) {
+      const auto [d, c] = queue.pop();
+      if (d != dist[c]) continue;  // failed already
+      if (stopped()) return false;
+      if (holds(c)) continue;
+      dist[c] = kUnreachable;
+      failed.push_back(c);
+      for (std::size_t m = 0; m < nm; ++m) {
+        const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(c) + off[m]);
+        if (dist[j] != kUnreachable && dist[j] > d) queue.push(dist[j], static_cast<std::uint32_t>(j));
+      }
+    }
+  }
+  // 2. Lower. The goal is a source again if it was blocked before.
+  detail::RadixHeap queue;
+  if (level[goal] != 255 && dist[goal] != 0) {
+    dist[goal] = 0;
+    queue.push(0, static_cast<std::uint32_t>(goal));
+  }
+  forNear([&](std::size_t c) {
+    if (dist[c] != kUnreachable) queue.push(dist[c], static_cast<std::uint32_t>(c));
+  });
+  for (const std::uint32_t c : failed) {
+    for (std::size_t m = 0; m < nm; ++m) {
+      const std::size_t i = static_cast<std::size_t>(static_cast<std::int64_t>(c) - off[m]);
+      if (dist[i] != kUnreachable) queue.push(dist[i], static_cast<std::uint32_t>(i));
+    }
+  }
+  if (!(nm == 8 ? dijkstra8(kind, dist, queue, stop) : dijkstra(kind, dist, queue, stop))) return false;
+  // The cells it did not pop keep old distances; a bound is enough (a saturated distance would
+  // have been popped last).
+  grid.max_distance = std::max(old.max_distance, queue.lastPopped());
+  if (grid.max_distance >= kSaturated) return run(kind, gx, gy, grid, stop);
+  return true;
 }
 
 DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) const {
   const int k = alias_[static_cast<int>(kind)];
   DistanceGrid g;
-  g.width = width_;
-  g.height = height_;
-  run(kinds_[k], gx, gy, g.dist);
+  run(kinds_[k], gx, gy, g);
   return g;
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, int gh, bool inadmissible,
                                                                     unsigned threads, bool backward,
                                                                     const GridStop* stop) const {
+  return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, nullptr, nullptr);
+}
+
+std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(std::shared_ptr<const GoalHeuristics> old,
+                                                                   const std::vector<CellRect>& changed,
+                                                                   bool inadmissible, unsigned threads,
+                                                                   bool backward, const GridStop* stop) const {
+  const int gx = old->goal_x, gy = old->goal_y, gh = old->goal_heading;
+  return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, std::move(old), &changed);
+}
+
+std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
+    int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward, const GridStop* stop,
+    std::shared_ptr<const GoalHeuristics> old, const std::vector<CellRect>* changed) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<GoalHeuristics>();
   out->goal_x = gx;
@@ -415,13 +583,36 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (wanted[k] && !wanted[alias_[k]] && std::find(tasks.begin(), tasks.end(), alias_[k]) == tasks.end()) tasks.push_back(alias_[k]);
   }
+  // old's grid of kind k can be repaired into kind k's if it holds kind k's own distances
+  // (another kind's, rescaled, cannot), for the same goal and map size.
+  const DistanceGrid* base[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
+  for (int k : tasks) {
+    const DistanceGrid* g = k >= 0 && old ? old->grids[k].get() : nullptr;
+    if (g != nullptr && old->scale[k] == 1.0 && g->width == width_ && g->height == height_ && old->goal_x == gx &&
+        old->goal_y == gy) {
+      base[k] = g;
+    }
+  }
+  // A grid nobody else holds (the caller gave up old, and no other task reads it) is repaired in
+  // place: copying a big grid costs more than the repair itself. The grids in GoalHeuristics
+  // are const only to their readers; this builder made them.
+  const bool owned = old && old.use_count() == 1;
   std::shared_ptr<DistanceGrid> result[kNumGridKinds];
   for (int k : tasks) {
     if (k < 0) continue;
-    result[k] = std::make_shared<DistanceGrid>();
-    result[k]->width = width_;
-    result[k]->height = height_;
+    const bool alone = base[k] != nullptr && std::count(std::begin(base), std::end(base), base[k]) == 1;
+    if (owned && alone) {
+      for (int j = 0; j < kNumGridKinds; ++j) {
+        if (old->grids[j].get() == base[k]) result[k] = std::const_pointer_cast<DistanceGrid>(old->grids[j]);
+      }
+    } else {
+      result[k] = std::make_shared<DistanceGrid>();
+    }
   }
+  auto grid = [&](int k) {
+    if (base[k] != nullptr) return repairGrid(kinds_[k], gx, gy, *base[k], *changed, *result[k], stop);
+    return run(kinds_[k], gx, gy, *result[k], stop);
+  };
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stopped{false};
   auto worker = [&]() {
@@ -430,7 +621,7 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int 
         out->coarse = coarse_->distances(gx, gy, gh, backward, stop);
         out->coarse_lattice = coarse_.get();
         if (out->coarse.empty()) stopped = true;
-      } else if (!run(kinds_[tasks[t]], gx, gy, result[tasks[t]]->dist, stop)) {
+      } else if (!grid(tasks[t])) {
         stopped = true;
       }
     }

@@ -35,6 +35,8 @@ class RadixHeap {
     --size_;
     return e;
   }
+  /// The key of the last pop (0 before the first): the largest, the queue being monotone.
+  std::uint32_t lastPopped() const { return last_; }
   /// The value popped `ahead` pops from now if no push comes first (else any value), for
   /// prefetching; `fallback` if unknown.
   std::uint32_t upcoming(std::size_t ahead, std::uint32_t fallback) const {

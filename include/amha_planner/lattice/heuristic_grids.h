@@ -57,6 +57,9 @@ constexpr std::uint32_t kGridFraction = 4;
 struct DistanceGrid {
   int width = 0, height = 0;
   std::vector<std::uint32_t> dist;
+  /// No finite distance exceeds this (the largest one after a full computation; kUnreachable - 1
+  /// if a distance saturated).
+  std::uint32_t max_distance = 0;
   std::uint32_t at(int x, int y) const { return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)]; }
 };
 
@@ -103,6 +106,20 @@ class HeuristicGridBuilder {
   std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading, bool inadmissible = true,
                                                 unsigned threads = 0, bool backward = false,
                                                 const GridStop* stop = nullptr) const;
+  /// The grids of old's goal (old->goal_x, goal_y, goal_heading) for this builder's map,
+  /// repaired from `old`: grids computed for a version of this map whose cells differed from
+  /// this one's only inside the rectangles `changed` (with the same configuration). Equal to
+  /// compute() with the same arguments, but a grid visits only the cells whose distance the
+  /// change can alter: the cells near the change and those whose shortest path led through it.
+  /// The coarse distances are computed again (they are small), and a grid that cannot be
+  /// repaired (old holds it at another kind's scale, or its distances could saturate) is
+  /// computed in full. If `old` is the only reference to its grids (the caller moved its own
+  /// in), they are repaired in place instead of copied, and are spent even if `stop` ends the
+  /// repair. Null if `stop` asked to stop first.
+  std::shared_ptr<const GoalHeuristics> repair(std::shared_ptr<const GoalHeuristics> old,
+                                               const std::vector<CellRect>& changed, bool inadmissible = true,
+                                               unsigned threads = 0, bool backward = false,
+                                               const GridStop* stop = nullptr) const;
   /// One grid alone (for tests and timing).
   DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
   bool needed(GridKind kind) const { return needed_[static_cast<int>(kind)]; }
@@ -116,6 +133,8 @@ class HeuristicGridBuilder {
     std::vector<char> either_side;       // per move: GridMove::either_side
     std::vector<std::uint32_t> step;     // per move, 256 cost classes
     std::uint32_t max_step = 0;
+    std::uint32_t min_step = 0;  // of a passable move
+    int reach = 1;               // cells: the farthest a move's end or required cell lies
   };
   static constexpr int kMaxRequired = 4;
   HeuristicGridBuilder(const LatticeGraph& graph, const HeuristicGridBuilder* previous);
@@ -123,12 +142,27 @@ class HeuristicGridBuilder {
   /// k are the previous map's) where graph_.recomputed() says nothing changed.
   void buildKind(int k, int connectivity, double units_per_cell, const std::vector<std::uint8_t>* mask,
                  std::uint8_t max_cost_class, const HeuristicGridBuilder* previous);
+  /// compute() and repair(): repairs from `old` where it can (old and changed non-null).
+  std::shared_ptr<const GoalHeuristics> computeOrRepair(int goal_x, int goal_y, int goal_heading, bool inadmissible,
+                                                        unsigned threads, bool backward, const GridStop* stop,
+                                                        std::shared_ptr<const GoalHeuristics> old,
+                                                        const std::vector<CellRect>* changed) const;
   // These return false when `stop` asked to stop (the grid is then incomplete).
-  bool run(const Kind& kind, int goal_x, int goal_y, std::vector<std::uint32_t>& grid, const GridStop* stop = nullptr) const;
+  bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid, const GridStop* stop = nullptr) const;
+  bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
+                  const std::vector<CellRect>& changed, DistanceGrid& grid, const GridStop* stop) const;  // grid may be old
+  /// Fills `grid` with `count` copies of `value`, or with `source`, in slices that check `stop`.
+  bool fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
+            const std::vector<std::uint32_t>* source, const GridStop* stop) const;
+  /// Whether a distance on this map could reach the saturation value kUnreachable - 1.
+  bool canSaturate(const Kind& kind) const;
+  /// The cost of move m from padded cell i (dijkstra()'s relaxation), kUnreachable if blocked.
+  std::uint32_t moveCost(const Kind& kind, std::size_t i, std::size_t m) const;
+  // Dijkstra from the cells already in `queue` (with their distances in dist).
   template <class Queue>
-  bool dijkstra(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
+  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
   template <class Queue>
-  bool dijkstra8(const Kind& kind, std::uint32_t goal, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
+  bool dijkstra8(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;
