@@ -30,20 +30,67 @@ struct LatticePlanner::Impl {
   std::mutex mutex;
   std::list<CacheEntry> cache;  // most recently used first
   std::uint64_t next_serial = 0;
+  /// Grids of the planners this one was built from, for goals it has not computed yet, with
+  /// the areas changed since (LatticeConfig::repair_heuristics): repaired on first use.
+  struct StaleEntry {
+    int x, y, heading;
+    bool inadmissible, backward;
+    std::shared_ptr<const GoalHeuristics> grids;
+    std::vector<CellRect> changed;
+  };
+  // The previous planner's most recently used first; with `cache`, at most
+  // heuristic_cache_size goals (guarded by mutex).
+  std::list<StaleEntry> stale;
+  /// A chain of more updates than this is not repaired: its areas may cover the map.
+  static constexpr std::size_t kMaxChangedAreas = 32;
+
+  /// Takes the grids of `previous` (cached or stale) over as stale entries, `changed` added.
+  void inheritGrids(Impl& previous, const CellRect& changed) {
+    const std::size_t capacity = static_cast<std::size_t>(graph->config().heuristic_cache_size);
+    std::lock_guard<std::mutex> lock(previous.mutex);
+    auto add = [&](const StaleEntry& e) {
+      if (stale.size() >= capacity || e.changed.size() >= kMaxChangedAreas) return;
+      for (const StaleEntry& s : stale) {
+        if (s.x == e.x && s.y == e.y && s.heading == e.heading && s.inadmissible == e.inadmissible &&
+            s.backward == e.backward) {
+          return;
+        }
+      }
+      stale.push_back(e);
+      if (!changed.empty()) stale.back().changed.push_back(changed);
+    };
+    for (const CacheEntry& e : previous.cache) {
+      // Grids still being computed (or stopped, or failed) are not waited for.
+      if (e.grids.wait_for(std::chrono::seconds(0)) != std::future_status::ready) continue;
+      std::shared_ptr<const GoalHeuristics> grids;
+      try {
+        grids = e.grids.get();
+      } catch (...) {
+        continue;
+      }
+      if (grids) add(StaleEntry{e.x, e.y, e.heading, e.inadmissible, e.backward, grids, {}});
+    }
+    for (const StaleEntry& e : previous.stale) add(e);
+  }
 
   /// The goal cell's grids: from the cache, or computed now (once, even if several threads ask
   /// at the same time). Null when `stop` (cancel flag, deadline) stopped this call first; a
   /// computation stopped that way is not cached, and threads that were waiting for it compute
   /// the grids themselves. `seconds` receives the time spent here computing or waiting for them.
   std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
-                                                     bool backward, const GridStop& stop, double* seconds) {
+                                                     bool backward, const GridStop& stop, double* seconds,
+                                                     HeuristicSource* source) {
     const auto t0 = std::chrono::steady_clock::now();
     auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     *seconds = 0.0;
+    *source = HeuristicSource::kCached;
     for (;;) {
       std::promise<std::shared_ptr<const GoalHeuristics>> promise;
       std::shared_future<std::shared_ptr<const GoalHeuristics>> future;
       std::uint64_t serial = 0;
+      // A stale entry for this goal is taken out of the list: the repair may spend its grids.
+      std::shared_ptr<const GoalHeuristics> stale_grids;
+      std::vector<CellRect> stale_changed;
       {
         std::lock_guard<std::mutex> lock(mutex);
         for (auto it = cache.begin(); it != cache.end(); ++it) {
@@ -58,6 +105,18 @@ struct LatticePlanner::Impl {
           serial = next_serial++;
           cache.push_front(CacheEntry{x, y, heading, inadmissible, backward, serial, promise.get_future().share()});
           while (cache.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) cache.pop_back();
+          for (auto it = stale.begin(); it != stale.end(); ++it) {
+            if (it->x == x && it->y == y && it->heading == heading && it->inadmissible == inadmissible &&
+                it->backward == backward) {
+              stale_grids = std::move(it->grids);
+              stale_changed = std::move(it->changed);
+              stale.erase(it);
+              break;
+            }
+          }
+          while (!stale.empty() && cache.size() + stale.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) {
+            stale.pop_back();
+          }
         }
       }
       auto forget = [&] {
@@ -79,10 +138,16 @@ struct LatticePlanner::Impl {
         continue;  // that call was stopped: compute them here
       }
       try {
-        auto grids = builder->compute(x, y, heading, inadmissible, 0, backward, &stop);
+        // Moved in: if no older planner or running search holds them, they are repaired in
+        // place (a stopped repair then leaves nothing to repair later: the next query computes).
+        const bool repairing = stale_grids != nullptr;
+        auto grids = repairing
+                         ? builder->repair(std::move(stale_grids), stale_changed, inadmissible, 0, backward, &stop)
+                         : builder->compute(x, y, heading, inadmissible, 0, backward, &stop);
         if (!grids) forget();
         promise.set_value(grids);
         *seconds = since();
+        *source = repairing ? HeuristicSource::kRepaired : HeuristicSource::kComputed;
         return grids;
       } catch (...) {
         promise.set_exception(std::current_exception());
@@ -121,6 +186,7 @@ LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<c
   impl_->map = map;
   impl_->graph.reset(new LatticeGraph(*previous.impl_->graph, std::move(map), changed));
   impl_->builder.reset(new HeuristicGridBuilder(*previous.impl_->builder, *impl_->graph));
+  if (impl_->graph->config().repair_heuristics) impl_->inheritGrids(*previous.impl_, impl_->graph->recomputed());
 }
 
 LatticePlanner::~LatticePlanner() = default;
@@ -197,7 +263,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                         std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
   }
-  auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, stop, &result.heuristic_seconds);
+  auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, stop, &result.heuristic_seconds,
+                                    &result.heuristic_source);
   if (!grids) {
     const bool cancelled = limits.cancel != nullptr && limits.cancel->load();
     result.search.status = cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
@@ -225,6 +292,15 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
 
 std::vector<std::array<double, 2>> LatticePlanner::footprintAt(const Pose2D& pose) const {
   return impl_->graph->footprint().at(pose);
+}
+
+const char* heuristicSourceName(HeuristicSource s) {
+  switch (s) {
+    case HeuristicSource::kCached: return "cached";
+    case HeuristicSource::kComputed: return "computed";
+    case HeuristicSource::kRepaired: return "repaired";
+  }
+  return "unknown";
 }
 
 const char* queryErrorName(QueryError e) {

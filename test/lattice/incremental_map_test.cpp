@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "amha_planner/lattice/heuristic_grids.h"
@@ -220,6 +222,147 @@ TEST(LatticeIncremental, AnUpdatedPlannerPlansLikeAFreshOne) {
   if (!a.solutions.empty()) {
     EXPECT_EQ(a.solutions.back().search.cost, b.solutions.back().search.cost);
   }
+}
+
+// The grids of the goal queried before a chain of updates are repaired, not computed again,
+// and the plans are a fresh planner's; with repair_heuristics off they are computed again.
+TEST(LatticeIncremental, AnUpdatedPlannerRepairsTheGridsOfItsPredecessor) {
+  auto map = test::randomMap(160, 120, 0.05, 11, 14, 30);
+  for (const bool repair : {true, false}) {
+    LatticeConfig config;
+    config.repair_heuristics = repair;
+    config.robot_radius = 0.15;
+    auto planner = std::make_unique<LatticePlanner>(map, config);
+    const Pose2D start{1.0, 1.0, 0.0}, goal{6.6, 4.4, 1.57};
+    auto clear = [&](GridMap& m, double x, double y) {  // the robot's surroundings made free
+      for (int dy = -8; dy <= 8; ++dy) {
+        for (int dx = -8; dx <= 8; ++dx) m.cost[static_cast<std::size_t>(y / 0.05 + dy) * 160 + (x / 0.05 + dx)] = 0;
+      }
+    };
+    auto base = std::make_shared<GridMap>(*map);
+    clear(*base, start.x, start.y);
+    clear(*base, goal.x, goal.y);
+    planner = std::make_unique<LatticePlanner>(*planner, base, CellRect{0, 0, 160, 120});
+    PlannerConfig search;  // A-MHA*: every grid kind
+    SearchLimits limits;
+    limits.max_expansions = 200000;
+    const PlanResult first = planner->plan(start, goal, search, limits);
+    ASSERT_EQ(first.error, QueryError::kNone) << first.message;
+    auto source = [](const PlanResult& r) { return std::string(heuristicSourceName(r.heuristic_source)); };
+    EXPECT_EQ(source(first), "computed") << "no planner had computed this goal's grids";
+    EXPECT_EQ(source(planner->plan(start, goal, search, limits)), "cached");
+    // Two updates with no query between them: a wall with a gap, then an obstacle.
+    std::shared_ptr<GridMap> current = base;
+    for (const CellRect& r : {CellRect{78, 0, 82, 70}, CellRect{100, 30, 112, 42}}) {
+      auto next = std::make_shared<GridMap>(*current);
+      for (int y = r.y0; y < r.y1; ++y) {
+        for (int x = r.x0; x < r.x1; ++x) next->cost[static_cast<std::size_t>(y) * 160 + x] = kLethalCost;
+      }
+      planner = std::make_unique<LatticePlanner>(*planner, next, r);
+      current = next;
+    }
+    LatticePlanner fresh(current, config);
+    const PlanResult a = planner->plan(start, goal, search, limits);
+    const PlanResult b = fresh.plan(start, goal, search, limits);
+    ASSERT_EQ(a.error, QueryError::kNone) << a.message;
+    EXPECT_EQ(source(a), repair ? "repaired" : "computed");
+    EXPECT_EQ(source(b), "computed");
+    EXPECT_EQ(a.search.status, b.search.status);
+    EXPECT_EQ(a.search.expansions, b.search.expansions);
+    ASSERT_EQ(a.solutions.size(), b.solutions.size());
+    ASSERT_FALSE(a.solutions.empty()) << "the test wants a path around the wall";
+    for (std::size_t k = 0; k < a.solutions.size(); ++k) {
+      EXPECT_EQ(a.solutions[k].search.cost, b.solutions[k].search.cost) << "solution " << k;
+    }
+    // Another goal was never computed: computed now.
+    EXPECT_EQ(source(planner->plan(goal, start, search, limits)), "computed");
+  }
+}
+
+// Grids kept for repair count against heuristic_cache_size with the cache itself: a new goal's
+// grids push out the least recently used old ones.
+TEST(LatticeIncremental, KeptGridsAndCachedOnesStayWithinTheCacheSize) {
+  auto map = test::randomMap(120, 90, 0.05, 2, 0, 0);  // open: every query is valid
+  LatticeConfig config;
+  config.robot_radius = 0.1;
+  config.heuristic_cache_size = 2;
+  auto planner = std::make_unique<LatticePlanner>(map, config);
+  const Pose2D start{0.5, 0.5, 0.0}, a{5.0, 4.0, 0.0}, b{1.0, 4.0, 0.0}, c{5.0, 0.5, 0.0};
+  PlannerConfig search;
+  search.algorithm = Algorithm::kWeightedAStar;
+  SearchLimits limits;
+  auto source = [&](const Pose2D& goal) {
+    const PlanResult r = planner->plan(start, goal, search, limits);
+    EXPECT_EQ(r.error, QueryError::kNone) << r.message;
+    return std::string(heuristicSourceName(r.heuristic_source));
+  };
+  EXPECT_EQ(source(a), "computed");
+  EXPECT_EQ(source(b), "computed");  // b is now the most recently used
+  auto next = std::make_shared<GridMap>(*map);
+  next->cost[static_cast<std::size_t>(45) * 120 + 60] = kLethalCost;
+  planner = std::make_unique<LatticePlanner>(*planner, next, CellRect{60, 45, 61, 46});
+  EXPECT_EQ(source(c), "computed");  // c, b and a would be three: a is dropped
+  EXPECT_EQ(source(b), "repaired");
+  EXPECT_EQ(source(a), "computed");
+}
+
+// Queries on a planner while the next one is built from it and queried too (the server's
+// builder thread and its requests): the kept grids are copied while the old planner still
+// holds them, one query repairs them while others wait, and every answer is a fresh
+// planner's. Named for the TSan pass.
+TEST(LatticeIncremental, ConcurrentQueriesWhileAPlannerIsBuiltFromThisOne) {
+  auto map = test::randomMap(140, 100, 0.05, 4, 10, 20);
+  LatticeConfig config;
+  config.robot_radius = 0.1;
+  auto first = std::make_shared<LatticePlanner>(map, config);
+  // A start and goal clear of the random obstacles and of the update.
+  const Pose2D start{0.6, 0.6, 0.0}, goal{6.3, 4.4, 0.0};
+  auto cleared = std::make_shared<GridMap>(*map);
+  for (const Pose2D& p : {start, goal}) {
+    for (int dy = -8; dy <= 8; ++dy) {
+      for (int dx = -8; dx <= 8; ++dx) {
+        cleared->cost[static_cast<std::size_t>(p.y / 0.05 + dy) * 140 + static_cast<std::size_t>(p.x / 0.05 + dx)] = 0;
+      }
+    }
+  }
+  first = std::make_shared<LatticePlanner>(*first, cleared, CellRect{0, 0, 140, 100});
+  PlannerConfig search;
+  SearchLimits limits;
+  limits.max_expansions = 50000;
+  ASSERT_EQ(first->plan(start, goal, search, limits).error, QueryError::kNone);  // grids cached
+  auto next_map = std::make_shared<GridMap>(*cleared);
+  const CellRect wall{60, 20, 64, 90};
+  for (int y = wall.y0; y < wall.y1; ++y) {
+    for (int x = wall.x0; x < wall.x1; ++x) next_map->cost[static_cast<std::size_t>(y) * 140 + x] = kLethalCost;
+  }
+  LatticePlanner fresh_first(cleared, config), fresh_next(next_map, config);
+  const PlanResult want_first = fresh_first.plan(start, goal, search, limits);
+  const PlanResult want_next = fresh_next.plan(start, goal, search, limits);
+  ASSERT_FALSE(want_first.solutions.empty() || want_next.solutions.empty()) << "the test wants paths";
+  ASSERT_NE(want_first.search.expansions, want_next.search.expansions) << "the wall should change the search";
+  std::shared_ptr<LatticePlanner> next;
+  std::atomic<bool> built{false};
+  std::vector<std::string> failures(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int k = 0; k < 6; ++k) {
+        const bool on_next = t % 2 == 1 && built.load();
+        const PlanResult r = (on_next ? next : first)->plan(start, goal, search, limits);
+        const PlanResult& want = on_next ? want_next : want_first;
+        if (r.search.expansions != want.search.expansions || r.solutions.size() != want.solutions.size()) {
+          failures[t] = std::string(on_next ? "next" : "first") + " planner: expansions " +
+                        std::to_string(r.search.expansions) + " instead of " + std::to_string(want.search.expansions);
+        }
+      }
+    });
+  }
+  next = std::make_shared<LatticePlanner>(*first, next_map, wall);
+  built = true;
+  for (auto& th : threads) th.join();
+  for (const std::string& f : failures) EXPECT_EQ(f, "");
+  const PlanResult last = next->plan(start, goal, search, limits);
+  EXPECT_EQ(last.search.expansions, want_next.search.expansions);
 }
 
 }  // namespace

@@ -138,6 +138,10 @@ struct LatticeConfig {
   bool backward_search = false;
   /// Goals whose heuristic grids are kept (each costs ~16 bytes per map cell).
   int heuristic_cache_size = 2;
+  /// A planner built from the previous one after a map change keeps that one's cached grids
+  /// and repairs them on the first query to their goal (HeuristicGridBuilder::repair: exact,
+  /// and far quicker than computing them again unless the change reroutes most of the map).
+  bool repair_heuristics = true;
 };
 
 /// Why a query was refused before searching.
@@ -163,6 +167,13 @@ struct LatticeSolution {
   double elapsed_total_s = 0.0;
 };
 
+/// Where a query's heuristic grids came from.
+enum class HeuristicSource {
+  kCached,    ///< the cache (or another call computing them at the same time)
+  kComputed,  ///< computed for this query
+  kRepaired,  ///< repaired from the grids of the planner this one was built from
+};
+
 struct PlanResult {
   QueryError error = QueryError::kNone;
   std::string message;        ///< human-readable reason when error != kNone
@@ -172,6 +183,7 @@ struct PlanResult {
   /// computing them (0 when they were cached);
   /// it counts against limits.time_limit_s (added after the API freeze).
   double heuristic_seconds = 0.0;
+  HeuristicSource heuristic_source = HeuristicSource::kCached;  ///< (added after the API freeze)
 };
 
 /// A lattice planner for one map and one robot. Construction does the per-map work (loads or
@@ -186,7 +198,8 @@ class LatticePlanner {
   /// `changed` (same size, resolution and origin; checked, else LatticeError): the same result
   /// as the constructor above with previous.config(), built from `previous` by recomputing only
   /// what the change can reach (the robot's primitives and footprint sweeps are copied, the
-  /// clearance and openings recomputed near `changed`). Cached heuristic grids are not kept.
+  /// clearance and openings recomputed near `changed`). previous's cached heuristic grids are
+  /// kept and repaired on the first query to their goal (LatticeConfig::repair_heuristics).
   LatticePlanner(const LatticePlanner& previous, std::shared_ptr<const GridMap> map,
                  const CellRect& changed);
   ~LatticePlanner();
@@ -216,6 +229,7 @@ class LatticePlanner {
 };
 
 const char* queryErrorName(QueryError e);
+const char* heuristicSourceName(HeuristicSource s);
 
 }  // namespace lattice
 }  // namespace amha
