@@ -37,8 +37,15 @@ target_sources(amha PRIVATE
   src/cli/plan_command.cpp
   src/cli/bench_command.cpp
   src/cli/bench_lattice.cpp
+  src/cli/bench_replan.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
+
+# The replanning benchmark on the bundled map: the repaired chain's grids must be repaired
+# after every update, and both chains must find the same first solutions (else exit 1).
+add_test(NAME amha_bench_replan_repairs_and_agrees
+         COMMAND bash -c "out=$(\"$0\" bench replan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --updates 4 --window 60 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'not repaired: 0; unsolved: 0; first solutions that differ: 0' <<<\"$out\""
+                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
 # Contradicting flags are refused with a usage error (exit code 2), not silently resolved.
 add_test(NAME amha_plan_refuses_both_turn_flags

@@ -1,8 +1,11 @@
 // `amha bench <what> [options]`: dispatches to the registered benchmarks.
 #include "bench_command.h"
 
+#include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <iostream>
+#include <limits>
 #include <string>
 
 #include "command_registry.h"
@@ -14,6 +17,34 @@ namespace cli {
 std::vector<Benchmark>& benchmarkRegistry() {
   static std::vector<Benchmark> benchmarks;
   return benchmarks;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::infinity();
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);  // inf if either middle value is
+}
+
+std::string benchCommandLine(int argc, char** argv) {
+  std::string s = argv[0];
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.find_first_of(" ;\"'") != std::string::npos) a = "\"" + a + "\"";
+    s += " " + a;
+  }
+  return s;
+}
+
+std::string machineDescription() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  int cores = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0 && model == "unknown CPU") model = line.substr(line.find(':') + 2);
+    if (line.rfind("processor", 0) == 0) ++cores;
+  }
+  return model + ", " + std::to_string(cores) + " logical cores";
 }
 
 namespace {

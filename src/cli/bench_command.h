@@ -1,6 +1,7 @@
 // `amha bench <what>`: benchmarks register themselves here, one file each (bench_*.cpp).
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace amha {
@@ -13,6 +14,14 @@ struct Benchmark {
 };
 
 std::vector<Benchmark>& benchmarkRegistry();
+
+// Shared by the benchmarks' reports.
+/// The median; infinity for none (or if either middle value is).
+double median(std::vector<double> v);
+/// The command as typed: argv[0] ("amha bench <name>") and the arguments, quoted where needed.
+std::string benchCommandLine(int argc, char** argv);
+/// The CPU model and the number of logical cores, from /proc/cpuinfo.
+std::string machineDescription();
 
 struct BenchmarkRegistrar {
   BenchmarkRegistrar(const char* name, const char* summary, int (*run)(int, char**)) {

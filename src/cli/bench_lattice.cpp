@@ -45,34 +45,6 @@ struct Run {
   lattice::PlanResult result;
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return kInf;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);  // inf if either middle value is
-}
-
-std::string commandLine(int argc, char** argv) {
-  std::string s = "amha bench lattice";
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    if (a.find_first_of(" ;\"'") != std::string::npos) a = "\"" + a + "\"";
-    s += " " + a;
-  }
-  return s;
-}
-
-std::string machine() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  int cores = 0;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0 && model == "unknown CPU") model = line.substr(line.find(':') + 2);
-    if (line.rfind("processor", 0) == 0) ++cores;
-  }
-  return model + ", " + std::to_string(cores) + " logical cores";
-}
-
 std::string gitCommit() {
   FILE* p = popen("git rev-parse --short HEAD 2>/dev/null", "r");
   if (p == nullptr) return "unknown";
@@ -166,7 +138,7 @@ std::string gridTimingReport(const lattice::LatticeGraph& graph, int goals, unsi
 }
 
 int gridTiming(const lattice::LatticeGraph& graph, int goals, unsigned seed, const std::string& command) {
-  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(), machine().c_str(), gitCommit().c_str(),
+  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(), machineDescription().c_str(), gitCommit().c_str(),
               graph.width(), graph.height(), gridTimingReport(graph, goals, seed).c_str());
   return kExitOk;
 }
@@ -244,8 +216,8 @@ int benchLatticeMain(int argc, char** argv) {
     std::cerr << "amha bench lattice: found no valid start/goal pair on this map\n";
     return kExitBadInstances;
   }
-  if (grids_only) return gridTiming(*graph, grid_timing, seed, commandLine(argc, argv));
-  const std::string command = commandLine(argc, argv);
+  if (grids_only) return gridTiming(*graph, grid_timing, seed, benchCommandLine(argc, argv));
+  const std::string command = benchCommandLine(argc, argv);
   std::printf("%s\n%zu queries, %zu algorithms, %.1f s each\n", command.c_str(), queries.size(), algorithms.size(), time_limit);
 
   std::vector<Run> runs;
@@ -316,7 +288,7 @@ int benchLatticeMain(int argc, char** argv) {
 
   // Summary per algorithm.
   std::ostringstream sum;
-  sum << "command: " << command << "\nmachine: " << machine() << "\ncommit: " << gitCommit() << "\nmap: " << lo.map_file
+  sum << "command: " << command << "\nmachine: " << machineDescription() << "\ncommit: " << gitCommit() << "\nmap: " << lo.map_file
       << " (" << loaded.map->width << " x " << loaded.map->height << " cells of " << loaded.map->resolution << " m), "
       << graph->primitives().num_headings << " headings, " << graph->primitives().primitives.size() << " primitives\n"
       << "queries: " << queries.size() << (query_texts.empty() ? " seeded random (seed " + std::to_string(seed) + ", kept if weighted A* finds a path in 2 s)" : " given")

@@ -91,9 +91,16 @@ def main():
     ap.add_argument("--goal-cell", default="260,60", help="probe goal, in cells of the source map")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json")
+    ap.add_argument("--write-map", metavar="DIR",
+                    help="only write the scaled map (DIR/scaled.yaml and .pgm) and exit, e.g. for amha bench replan")
     args = ap.parse_args()
     if args.upscale < 1 or args.resolution <= 0 or args.window < 1 or args.seconds <= 0:
         sys.exit("bench-map-updates: --upscale, --resolution, --window, --seconds must be positive")
+    if args.write_map:
+        os.makedirs(args.write_map, exist_ok=True)
+        yaml, width, height = write_scaled_map(args.map, args.upscale, args.resolution, args.write_map)
+        print("%s: %d x %d cells of %.3f m" % (yaml, width, height, args.resolution))
+        return
     rates = [float(r) for r in args.rates.split(",")]
     random.seed(args.seed)
 
