@@ -157,6 +157,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.anchor_turn_term);
   l.backward_search = getBool(pnh, "backward_search", l.backward_search);
   l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
+  l.repair_heuristics = getBool(pnh, "repair_heuristics", l.repair_heuristics);
   // Map.
   p.occupancy.lethal_threshold =
       getInt(pnh, "lethal_threshold", p.occupancy.lethal_threshold, 1, 100);

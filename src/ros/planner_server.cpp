@@ -479,6 +479,10 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     };
     const lat::PlanResult result = planner->plan(s, g, config, limits, on_solution);
     res.planning_time = result.search.elapsed_s + result.heuristic_seconds;
+    if (result.error == lat::QueryError::kNone) {
+      ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
+                result.heuristic_seconds);
+    }
     res.expansions = result.search.expansions;
 
     if (result.error != lat::QueryError::kNone) {
