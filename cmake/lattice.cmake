@@ -40,6 +40,9 @@ target_sources(amha PRIVATE
   src/cli/bench_replan.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
+# The benchmarks stamp their reports with this tree's commit.
+set_source_files_properties(src/cli/bench_command.cpp PROPERTIES COMPILE_DEFINITIONS
+                            "AMHA_SOURCE_DIR=\"${CMAKE_SOURCE_DIR}\"")
 
 # The replanning benchmark on the bundled map: the repaired chain's grids must be repaired
 # after every update, and both chains must find the same first solutions (else exit 1).

@@ -2,6 +2,7 @@
 #include "bench_command.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -45,6 +46,32 @@ std::string machineDescription() {
     if (line.rfind("processor", 0) == 0) ++cores;
   }
   return model + ", " + std::to_string(cores) + " logical cores";
+}
+
+namespace {
+
+// The first line a shell command prints, or "" (popen: git is an optional tool here).
+std::string firstLineOf(const std::string& command, bool* succeeded = nullptr) {
+  FILE* p = popen(command.c_str(), "r");
+  if (p == nullptr) return "";
+  char buf[128] = {0};
+  const bool read = std::fgets(buf, sizeof buf, p) != nullptr;
+  const int status = pclose(p);
+  if (succeeded != nullptr) *succeeded = status == 0;
+  std::string s = read ? buf : "";
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+std::string sourceCommit() {
+  const std::string git = std::string("git -C '") + AMHA_SOURCE_DIR + "' ";
+  const std::string commit = firstLineOf(git + "rev-parse --short HEAD 2>/dev/null");
+  if (commit.empty()) return "unknown";
+  bool clean = false;
+  firstLineOf(git + "diff --quiet HEAD -- src include 2>/dev/null", &clean);
+  return clean ? commit : commit + " (+ uncommitted changes)";
 }
 
 namespace {

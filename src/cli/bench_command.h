@@ -22,6 +22,10 @@ double median(std::vector<double> v);
 std::string benchCommandLine(int argc, char** argv);
 /// The CPU model and the number of logical cores, from /proc/cpuinfo.
 std::string machineDescription();
+/// The source tree's commit, "+ uncommitted changes" if src/ or include/ differ from it (as
+/// scripts/bench-tiles stamps its tables); "unknown" without git. The tree is the one this
+/// binary was configured from; scripts/amha builds it before running it.
+std::string sourceCommit();
 
 struct BenchmarkRegistrar {
   BenchmarkRegistrar(const char* name, const char* summary, int (*run)(int, char**)) {

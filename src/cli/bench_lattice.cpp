@@ -45,17 +45,6 @@ struct Run {
   lattice::PlanResult result;
 };
 
-std::string gitCommit() {
-  FILE* p = popen("git rev-parse --short HEAD 2>/dev/null", "r");
-  if (p == nullptr) return "unknown";
-  char buf[64] = {0};
-  const bool ok = std::fgets(buf, sizeof buf, p) != nullptr;
-  pclose(p);
-  std::string s = ok ? buf : "unknown";
-  while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-  return s;
-}
-
 // Seeded random queries: valid start and goal states in one connected region of the cells the
 // robot's centre may occupy, at least `min_distance` apart. With `solvable` (the benchmark
 // runs), a pair is kept only if weighted A* (w = 5, default anchor) finds a path within 2 s,
@@ -138,7 +127,7 @@ std::string gridTimingReport(const lattice::LatticeGraph& graph, int goals, unsi
 }
 
 int gridTiming(const lattice::LatticeGraph& graph, int goals, unsigned seed, const std::string& command) {
-  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(), machineDescription().c_str(), gitCommit().c_str(),
+  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(), machineDescription().c_str(), sourceCommit().c_str(),
               graph.width(), graph.height(), gridTimingReport(graph, goals, seed).c_str());
   return kExitOk;
 }
@@ -288,7 +277,7 @@ int benchLatticeMain(int argc, char** argv) {
 
   // Summary per algorithm.
   std::ostringstream sum;
-  sum << "command: " << command << "\nmachine: " << machineDescription() << "\ncommit: " << gitCommit() << "\nmap: " << lo.map_file
+  sum << "command: " << command << "\nmachine: " << machineDescription() << "\ncommit: " << sourceCommit() << "\nmap: " << lo.map_file
       << " (" << loaded.map->width << " x " << loaded.map->height << " cells of " << loaded.map->resolution << " m), "
       << graph->primitives().num_headings << " headings, " << graph->primitives().primitives.size() << " primitives\n"
       << "queries: " << queries.size() << (query_texts.empty() ? " seeded random (seed " + std::to_string(seed) + ", kept if weighted A* finds a path in 2 s)" : " given")

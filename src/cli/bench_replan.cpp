@@ -139,8 +139,8 @@ int benchReplanMain(int argc, char** argv) {
     return kExitUsage;
   }
   const GridMap& m0 = *loaded.map;
-  std::printf("%s\nmachine: %s\nmap: %d x %d cells (%.1f M)\n", benchCommandLine(argc, argv).c_str(),
-              machineDescription().c_str(), m0.width, m0.height, m0.width * 1e-6 * m0.height);
+  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells (%.1f M)\n", benchCommandLine(argc, argv).c_str(),
+              machineDescription().c_str(), sourceCommit().c_str(), m0.width, m0.height, m0.width * 1e-6 * m0.height);
   const char* names[2] = {"repair", "compute"};
   std::vector<double> build[2], heur[2], first[2];
   int mismatches = 0, unsolved = 0, not_repaired = 0;
