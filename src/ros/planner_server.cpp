@@ -244,94 +244,107 @@ void PlannerServer::onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& u
 
 void PlannerServer::rebuildPlanner() {
   const auto t0 = std::chrono::steady_clock::now();
-  std::shared_ptr<const lat::GridMap> grid;
-  std::uint64_t version = 0, updates = 0;
-  bool full_map = false;
-  lat::CellRect changed;
-  std::uint32_t width = 0, height = 0;
-  double resolution = 0.0;
-  std::string error;
-  // The current planner is the last build's (this thread makes them all): after updates alone
-  // its map differs from the new one only in the updates' rectangle.
-  auto previous = currentPlanner();
-  {
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    version = map_version_;
-    updates = unbuilt_updates_;
-    changed = unbuilt_rect_;
-    const std::shared_ptr<const lat::GridMap> full_grid = std::move(unbuilt_grid_);
-    full_map = full_grid != nullptr;
-    if (full_map || build_failed_) previous = nullptr;
-    unbuilt_updates_ = 0;
-    unbuilt_grid_ = nullptr;
-    unbuilt_rect_ = lat::CellRect{};
-    width = last_map_.info.width;
-    height = last_map_.info.height;
-    resolution = last_map_.info.resolution;
-    // `changed` is relative to the full map's grid, or else to the previous planner's map;
-    // only its cells are converted again.
-    const lat::GridMap* base = full_map ? full_grid.get() : previous ? &previous->map() : nullptr;
-    try {
-      if (full_map && changed.empty()) {
-        grid = full_grid;
-      } else if (base != nullptr) {
-        auto patched = std::make_shared<lat::GridMap>(*base);
-        convertOccupancyCells(last_map_, changed, params_.occupancy, patched.get());
-        grid = std::move(patched);
-      } else {  // after a failed build: the current planner's map may be an older one
-        grid = std::make_shared<const lat::GridMap>(
-            gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
-      }
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
+  BuildInput in = takeUnbuiltMap();
   // Built off the locks: plans keep using the previous planner until the swap.
   std::shared_ptr<lat::LatticePlanner> planner;
-  if (grid) {
+  if (in.grid) {
     try {
-      planner = previous ? std::make_shared<lat::LatticePlanner>(*previous, grid, changed)
-                         : std::make_shared<lat::LatticePlanner>(grid, params_.lattice);
+      planner = in.previous ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
+                            : std::make_shared<lat::LatticePlanner>(in.grid, params_.lattice);
     } catch (const std::exception& e) {
-      error = e.what();
+      in.error = e.what();
     }
   }
+  const bool incremental = in.previous != nullptr;
+  in.previous = nullptr;  // see installPlanner
+  const bool have_planner = installPlanner(std::move(planner), in.version);
+  logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), have_planner,
+           incremental);
+}
+
+PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
+  BuildInput in;
+  // The current planner is the last build's (this thread makes them all): after updates alone
+  // its map differs from the new one only in the updates' rectangle.
+  in.previous = currentPlanner();
+  std::lock_guard<std::mutex> lock(map_mutex_);
+  in.version = map_version_;
+  in.updates = unbuilt_updates_;
+  in.changed = unbuilt_rect_;
+  const std::shared_ptr<const lat::GridMap> full_grid = std::move(unbuilt_grid_);
+  in.full_map = full_grid != nullptr;
+  if (in.full_map || build_failed_) in.previous = nullptr;
+  unbuilt_updates_ = 0;
+  unbuilt_grid_ = nullptr;
+  unbuilt_rect_ = lat::CellRect{};
+  in.width = last_map_.info.width;
+  in.height = last_map_.info.height;
+  in.resolution = last_map_.info.resolution;
+  // `changed` is relative to the full map's grid, or else to the previous planner's map;
+  // only its cells are converted again.
+  const lat::GridMap* base = in.full_map ? full_grid.get() : in.previous ? &in.previous->map() : nullptr;
+  try {
+    if (in.full_map && in.changed.empty()) {
+      in.grid = full_grid;
+    } else if (base != nullptr) {
+      auto patched = std::make_shared<lat::GridMap>(*base);
+      convertOccupancyCells(last_map_, in.changed, params_.occupancy, patched.get());
+      in.grid = std::move(patched);
+    } else {  // after a failed build: the current planner's map may be an older one
+      in.grid = std::make_shared<const lat::GridMap>(
+          gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
+    }
+  } catch (const std::exception& e) {
+    in.error = e.what();
+  }
+  return in;
+}
+
+bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, std::uint64_t version) {
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
     build_failed_ = !planner;
   }
   bool have_planner = false;
+  std::shared_ptr<lat::LatticePlanner> replaced;
   {
     std::lock_guard<std::mutex> lock(planner_mutex_);
-    if (planner) planner_ = std::move(planner);
+    if (planner) {
+      replaced = std::move(planner_);
+      planner_ = std::move(planner);
+    }
     have_planner = planner_ != nullptr;
     built_version_ = version;  // a refused map counts as built: requests must not wait for it
   }
+  // Released before the waiting requests wake (unless a running plan still holds it): the new
+  // planner then holds the heuristic grids it kept from it alone, and repairs them in place.
+  replaced = nullptr;
   planner_built_.notify_all();
+  return have_planner;
+}
 
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::string what = full_map ? "map" : "";
-  if (updates > 0) {
-    what += (full_map ? " + " : "") + std::to_string(updates) +
-            (updates == 1 ? " update" : " updates (one build)");
+void PlannerServer::logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const {
+  std::string what = in.full_map ? "map" : "";
+  if (in.updates > 0) {
+    what += (in.full_map ? " + " : "") + std::to_string(in.updates) +
+            (in.updates == 1 ? " update" : " updates (one build)");
   }
-  if (!error.empty()) {
+  if (!in.error.empty()) {
     const char* kept = have_planner ? "plans keep the previous planner" : "requests get NO_MAP";
-    if (full_map) {
-      ROS_ERROR("amha_planner: %s %ux%u refused: %s; %s", what.c_str(), width, height,
-                error.c_str(), kept);
+    if (in.full_map) {
+      ROS_ERROR("amha_planner: %s %ux%u refused: %s; %s", what.c_str(), in.width, in.height,
+                in.error.c_str(), kept);
     } else {  // every update of a refused map would say the same
-      ROS_ERROR_THROTTLE(5.0, "amha_planner: %s %ux%u refused: %s; %s", what.c_str(), width,
-                         height, error.c_str(), kept);
+      ROS_ERROR_THROTTLE(5.0, "amha_planner: %s %ux%u refused: %s; %s", what.c_str(), in.width,
+                         in.height, in.error.c_str(), kept);
     }
     return;
   }
   // Updates can come several times a second (costmap_2d): one line each only when debugging.
-  ROS_LOG(full_map ? ros::console::levels::Info : ros::console::levels::Debug,
+  ROS_LOG(in.full_map ? ros::console::levels::Info : ros::console::levels::Debug,
           ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
-          "ready in %.2f s%s", what.c_str(), width, height, resolution, seconds,
-          previous ? " (rebuilt near the change only)" : "");
+          "ready in %.2f s%s", what.c_str(), in.width, in.height, in.resolution, seconds,
+          incremental ? " (rebuilt near the change only)" : "");
 }
 
 bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {

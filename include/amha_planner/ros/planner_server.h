@@ -68,11 +68,28 @@ class PlannerServer {
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
   void onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update);
+  /// What one build starts from: the maps and updates received since the last build.
+  struct BuildInput {
+    std::shared_ptr<const amha::lattice::GridMap> grid;  ///< the map to build (null: refused)
+    /// The planner to build from (after updates alone), or null for a full build.
+    std::shared_ptr<amha::lattice::LatticePlanner> previous;
+    amha::lattice::CellRect changed;  ///< cells changed since previous's map
+    std::uint64_t version = 0, updates = 0;
+    bool full_map = false;
+    std::uint32_t width = 0, height = 0;
+    double resolution = 0.0;
+    std::string error;  ///< why the map was refused
+  };
   /// On the builder thread: builds the planner of the current map (with every update received
   /// so far) and makes it current; a map the lattice refuses is logged and the planner kept.
   /// After updates alone the new planner is built from the current one, recomputing only the
   /// part of it the updates can change.
   void rebuildPlanner();
+  /// Takes what rebuildPlanner() is to build (map_mutex_), converting only changed cells.
+  BuildInput takeUnbuiltMap();
+  /// Makes `planner` current if there is one, and marks `version` built either way.
+  bool installPlanner(std::shared_ptr<amha::lattice::LatticePlanner> planner, std::uint64_t version);
+  void logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const;
   /// Waits until the planner covers every map and update received so far; false if `cancel`
   /// or shutdown came first.
   bool waitForCurrentMap(const std::atomic<bool>& cancel);
