@@ -84,13 +84,18 @@ def main():
     ap.add_argument("--map", default=os.path.join(root, "maps/willow_garage/willow-2010-02-18-0.10.yaml"))
     ap.add_argument("--upscale", type=int, default=6)
     ap.add_argument("--resolution", type=float, default=0.05)
-    ap.add_argument("--rates", default="1,2,5,10", help="update rates in Hz, comma-separated")
+    ap.add_argument("--rates", default="1,2,5,10", help="update rates in Hz, comma-separated (\"\" for none)")
     ap.add_argument("--seconds", type=float, default=10.0, help="of updates per rate")
     ap.add_argument("--window", type=int, default=100, help="cells per side of an update")
     ap.add_argument("--start-cell", default="170,550", help="probe start, in cells of the source map")
     ap.add_argument("--goal-cell", default="260,60", help="probe goal, in cells of the source map")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json")
+    ap.add_argument("--replan", type=int, default=0, metavar="N",
+                    help="then N times: an update of the map's own values, and a plan to the probe goal "
+                         "(reports where its heuristic grids came from and the first solution's time)")
+    ap.add_argument("--repair-heuristics", choices=["true", "false"], default="true",
+                    help="the node's ~repair_heuristics (default true)")
     ap.add_argument("--write-map", metavar="DIR",
                     help="only write the scaled map (DIR/scaled.yaml and .pgm) and exit, e.g. for amha bench replan")
     args = ap.parse_args()
@@ -101,7 +106,7 @@ def main():
         yaml, width, height = write_scaled_map(args.map, args.upscale, args.resolution, args.write_map)
         print("%s: %d x %d cells of %.3f m" % (yaml, width, height, args.resolution))
         return
-    rates = [float(r) for r in args.rates.split(",")]
+    rates = [float(r) for r in args.rates.split(",") if r.strip()]
     random.seed(args.seed)
 
     home = tempfile.mkdtemp(prefix="amha_bench_map_updates_")
@@ -131,11 +136,12 @@ def main():
         procs.append(subprocess.Popen(
             # Line-buffered, so that the log counts every build up to now.
             ["stdbuf", "-oL", "-eL", os.path.join(lib, "planner_node"), "__name:=amha_planner",
-             "_max_map_cells:=%d" % (width * height), "_robot_radius:=0.2"],
+             "_max_map_cells:=%d" % (width * height), "_robot_radius:=0.2",
+             "_repair_heuristics:=" + args.repair_heuristics],
             env=env, stdout=open(node_log, "w"), stderr=subprocess.STDOUT))
         procs.append(subprocess.Popen([os.path.join(lib, "map_publisher"), "_yaml:=" + yaml],
                                       env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
-        rows = measure(args, rates, width, height, node_log)
+        rows, replan = measure(args, rates, width, height, node_log)
     finally:
         for p in reversed(procs):
             p.send_signal(2)
@@ -150,12 +156,18 @@ def main():
     for r in rows:
         print("| %g | %d | %d | %.2f | %.2f |" % (r["rate_hz"], r["updates"], r["builds"],
                                               r["median_build_s"], r["lag_s"]))
+    if replan:
+        print("\nreplanning to the probe goal after each of %d updates (~repair_heuristics %s): "
+              "heuristic grids %s, median %.4f s; first solution after a median %.4f s (%d unsolved)"
+              % (args.replan, args.repair_heuristics, replan["grids"], replan["median_heuristic_s"],
+                 replan["median_first_s"], replan["unsolved"]))
     print("\nnode log: %s" % node_log)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"map": args.map, "upscale": args.upscale, "resolution": args.resolution,
                        "width": width, "height": height, "window": args.window,
-                       "seconds": args.seconds, "seed": args.seed, "rows": rows}, f, indent=1)
+                       "seconds": args.seconds, "seed": args.seed, "rows": rows, "replan": replan},
+                      f, indent=1)
 
 
 def builds_in(log_path, start_line):
@@ -242,7 +254,59 @@ def measure(args, rates, width, height, node_log):
         rows.append(row)
         print("rate %g Hz: %d updates, %d builds (median %.2f s), last update seen after %.2f s"
               % (rate, n, len(times), row["median_build_s"], lag), flush=True)
-    return rows
+    replan = None
+    if args.replan > 0:
+        replan = replan_after_updates(args, pub, update, probe, plan, (gx - half, gy - half, 2 * half), start,
+                                      goal, (sx, sy), (gx, gy), width, height, node_log)
+    return rows, replan
+
+
+def replan_after_updates(args, pub, update, probe, plan, goal_area, start, goal, start_cell, goal_cell,
+                         width, height, node_log):
+    """A robot driving to one goal through a costmap: after each update, a plan to the same goal."""
+    from amha_planner.srv import PlanRequest, PlanResponse
+    x0, y0, side = goal_area
+    pub.publish(update(x0, y0, side, side))  # the goal's area as in the map (open)
+    while probe() == PlanResponse.INVALID_GOAL:
+        time.sleep(0.01)
+    w, h = min(args.window, width), min(args.window, height)
+    keep = int(round(2.0 / args.resolution))  # windows stay 2 m clear of the start and goal
+
+    def clear_of(x, y):
+        return all(not (x - keep <= cx < x + w + keep and y - keep <= cy < y + h + keep)
+                   for cx, cy in (start_cell, goal_cell))
+
+    r = PlanRequest()
+    for p, (x, y) in ((r.start, start), (r.goal, goal)):
+        p.header.frame_id = "map"
+        p.pose.position.x, p.pose.position.y = x, y
+        p.pose.orientation.w = 1.0
+    r.time_budget = 1.0
+    plan(r)  # the goal's grids, computed once
+    _, seen = builds_in(node_log, 0)
+    firsts, unsolved = [], 0
+    for _ in range(args.replan):
+        while True:
+            x, y = random.randint(0, width - w), random.randint(0, height - h)
+            if clear_of(x, y):
+                break
+        pub.publish(update(x, y, w, h))
+        time.sleep(0.5)  # built by then (0.03-0.05 s)
+        res = plan(r)
+        if res.solutions:
+            firsts.append(res.solutions[0].elapsed)
+        else:
+            unsolved += 1
+    time.sleep(1.0)  # let the log catch up
+    lines = open(node_log, errors="replace").read().splitlines()[seen:]
+    grids = [(m.group(1), float(m.group(2))) for m in
+             (re.search(r"heuristic grids (\w+) in ([0-9.]+) s", l) for l in lines) if m]
+    counts = {}
+    for source, _ in grids:
+        counts[source] = counts.get(source, 0) + 1
+    return {"updates": args.replan, "repair_heuristics": args.repair_heuristics, "grids": counts,
+            "median_heuristic_s": statistics.median(t for _, t in grids) if grids else 0.0,
+            "median_first_s": statistics.median(firsts) if firsts else 0.0, "unsolved": unsolved}
 
 
 if __name__ == "__main__":
