@@ -173,16 +173,37 @@ void LatticeGraph::buildActions() {
   }
   action_index_[n] = actions_.size();
   linkActionsInto();
-  // Clearance only decides "clearance > sweep_radius": values above every radius are equal.
-  float max_sweep = 0.0f;
-  for (const LatticeAction& a : actions_) max_sweep = std::max(max_sweep, a.sweep_radius);
-  clearance_cap_ = max_sweep + 1.0f;
+  // Clearance only decides "clearance > sweep_radius": a cell keeps its class, the number of
+  // distinct radii its clearance exceeds. More than 255 radii are first rounded up onto 255
+  // levels: a larger radius only sends the search to the full footprint check more often.
+  std::vector<float> sweeps;
+  for (const LatticeAction& a : actions_) sweeps.push_back(a.sweep_radius);
+  const std::vector<float> radii = clearanceClassRadii(std::move(sweeps));
+  class_radii_ = radii;
+  for (LatticeAction& a : actions_) {
+    // The smallest listed radius >= the action's own (its own, unless rounded up).
+    a.sweep_class = static_cast<std::uint8_t>(std::lower_bound(radii.begin(), radii.end(), a.sweep_radius) - radii.begin());
+  }
+  clearance_cap_ = (radii.empty() ? 0.0f : radii.back()) + 1.0f;
   rest_cells_.resize(n);
   for (int h = 0; h < n; ++h) {
     if (!footprint_.polygon.empty()) {
       rest_cells_[h] = footprintCells(footprint_, Pose2D{0.0, 0.0, primitives_.heading_angles[h]}, res);
     }
   }
+}
+
+std::vector<float> clearanceClassRadii(std::vector<float> radii) {
+  std::sort(radii.begin(), radii.end());
+  radii.erase(std::unique(radii.begin(), radii.end()), radii.end());
+  if (radii.size() > 255) {
+    std::vector<float> levels(255);
+    for (int k = 0; k < 255; ++k) levels[k] = radii.back() * static_cast<float>(k + 1) / 255.0f;
+    levels.back() = radii.back();
+    for (float& r : radii) r = *std::lower_bound(levels.begin(), levels.end(), r);  // the first >= r
+    radii.erase(std::unique(radii.begin(), radii.end()), radii.end());
+  }
+  return radii;
 }
 
 std::array<double, 2> LatticeGraph::openingRadii() const {
@@ -220,10 +241,18 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   cv::Mat dist;
   cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   clearance_.resize(cells);
+  const float* class_radii = class_radii_.data();
+  const int num_radii = static_cast<int>(class_radii_.size());
+  const float top = num_radii > 0 ? class_radii[num_radii - 1] : 0.0f;
   for (int y = out.y0; y < out.y1; ++y) {
     const float* d = dist.ptr<float>(y + 1 - cy0);  // d[x + 1 - cx0]: cell (x, y)
-    float* c = clearance_.data() + static_cast<std::size_t>(y) * w;
-    for (int x = out.x0; x < out.x1; ++x) c[x] = std::min(d[x + 1 - cx0], clearance_cap_);
+    std::uint8_t* c = clearance_.data() + static_cast<std::size_t>(y) * w;
+    for (int x = out.x0; x < out.x1; ++x) {
+      const float v = d[x + 1 - cx0];
+      // Open space (beyond every radius) is the common case; else count the radii below v.
+      c[x] = static_cast<std::uint8_t>(
+          v > top ? num_radii : std::lower_bound(class_radii, class_radii + num_radii, v) - class_radii);
+    }
   }
   if (!openings) return;
   // Opening = dilation of the erosion: cells within r of a cell that is more than r from every

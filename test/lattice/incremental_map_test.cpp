@@ -160,6 +160,27 @@ TEST(LatticeIncremental, ANewObstacleIsFeltAsFarAsTheClearanceCap) {
   EXPECT_GT(ring, 0) << "the map is too small to test the cap's reach";
 }
 
+// A clearance class answers "clearance > sweep radius" for every action: with few radii exactly,
+// with more than 255 conservatively (a radius is only ever rounded up).
+TEST(LatticeIncremental, ClearanceClassRadiiAreAtMost255AndNeverBelowARadius) {
+  const std::vector<float> few = clearanceClassRadii({3.5f, 1.25f, 3.5f, 7.0f});
+  EXPECT_EQ(few, (std::vector<float>{1.25f, 3.5f, 7.0f}));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> radius(0.0f, 40.0f);
+  std::vector<float> many(2000);
+  for (float& r : many) r = radius(rng);
+  const std::vector<float> classes = clearanceClassRadii(many);
+  ASSERT_LE(classes.size(), 255u);
+  ASSERT_TRUE(std::is_sorted(classes.begin(), classes.end()));
+  EXPECT_EQ(classes.back(), *std::max_element(many.begin(), many.end()));
+  for (const float r : many) {
+    const auto c = std::lower_bound(classes.begin(), classes.end(), r);  // the action's class radius
+    ASSERT_NE(c, classes.end()) << r;
+    EXPECT_GE(*c, r);
+    EXPECT_LE(*c - r, classes.back() / 255.0f * 1.001f) << "rounded up by more than one level";
+  }
+}
+
 TEST(LatticeIncremental, AnEmptyChangeCopiesAndAnotherGridIsRefused) {
   auto map = test::randomMap(80, 60, 0.05, 5, 8, 0);
   LatticeConfig config;

@@ -27,11 +27,19 @@ struct LatticeAction {
   /// Largest distance (cells) from the start cell to a swept cell: if the start cell is
   /// farther than this from every lethal cell, no swept cell can be lethal.
   float sweep_radius = 0.0f;
+  /// Its rank among the distinct sweep radii: the start cell's clearance class exceeds it
+  /// exactly when the cell's clearance exceeds sweep_radius (LatticeGraph::clearance()).
+  std::uint8_t sweep_class = 0;
   std::uint32_t centre_begin = 0, centre_end = 0;  ///< into LatticeGraph::offsets()
   std::uint32_t swept_begin = 0, swept_end = 0;
 };
 
 constexpr Cost kInvalidEdge = -1;
+
+/// The radii that bound the clearance classes, for actions with these sweep radii: the distinct
+/// ones, ascending; more than 255 are rounded up onto 255 levels (a larger radius only sends the
+/// search to the full footprint check more often), so that a class fits in a byte.
+std::vector<float> clearanceClassRadii(std::vector<float> sweep_radii);
 
 class LatticeGraph {
  public:
@@ -78,7 +86,7 @@ class LatticeGraph {
       if (c >= kInscribedCost) return kInvalidEdge;
       worst = c > worst ? c : worst;
     }
-    if (clearance_[base] <= a.sweep_radius) {
+    if (clearance_[base] <= a.sweep_class) {
       for (std::uint32_t k = a.swept_begin; k < a.swept_end; ++k) {
         if (cost[offsets_[k]] >= kLethalCost) return kInvalidEdge;
       }
@@ -111,9 +119,13 @@ class LatticeGraph {
   double euclidTurnUnitsPerRadian() const { return euclid_turn_per_rad_; }
   double gridTurnUnitsPerRadian() const { return grid_turn_per_rad_; }
 
-  /// Distance (cells) from each cell centre to the nearest lethal/unknown cell centre, capped
-  /// at clearanceCap() (only comparisons with sweep radii below it matter).
-  const std::vector<float>& clearance() const { return clearance_; }
+  /// Per cell, its clearance class: how many of the distinct sweep radii (ascending) the
+  /// distance from its centre to the nearest lethal/unknown cell centre exceeds. The search
+  /// asks only "clearance > sweep radius", which a byte answers as well as the distance (a
+  /// quarter of a float's memory, and of what an incremental build copies).
+  const std::vector<std::uint8_t>& clearance() const { return clearance_; }
+  /// Distances at or beyond this (cells) are all in the top class: a change farther away
+  /// cannot alter a cell's class.
   float clearanceCap() const { return clearance_cap_; }
   /// The cells whose clearance and openings this graph computed: all of them, or for a graph
   /// built from a previous one, those the change could reach (the rest are the previous
@@ -150,7 +162,8 @@ class LatticeGraph {
   std::vector<std::int64_t> offsets_;
   std::vector<std::vector<CellOffset>> rest_cells_;  // footprint at rest, per heading
   std::vector<std::int64_t> penalty_q_;              // 256 entries: Q[c]
-  std::vector<float> clearance_;
+  std::vector<std::uint8_t> clearance_;
+  std::vector<float> class_radii_;  // the distinct sweep radii, ascending (at most 255)
   float clearance_cap_ = 0.0f;
   CellRect recomputed_;
   std::vector<std::uint8_t> opened_[2];
