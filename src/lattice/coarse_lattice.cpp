@@ -2,6 +2,7 @@
 #include "amha_planner/lattice/coarse_lattice.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -94,25 +95,25 @@ void CoarseLattice::fillBlocks(const CellRect& cells) {
   }
 }
 
-std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const GridStop* stop) const {
-  const std::vector<std::vector<AbstractEdge>>& edges = forward ? forward_ : reverse_;
-  std::vector<std::uint32_t> dist(static_cast<std::size_t>(pw_) * ph_ * headings_, kUnreachable);
-  const std::size_t goal = index(gx, gy, gh);
-  if (block_cost_[goal / headings_] == 255) return dist;
-  detail::RadixHeap heap;
-  dist[goal] = 0;
-  heap.push(0, static_cast<std::uint32_t>(goal));
+std::uint32_t CoarseLattice::edgeCost(std::size_t vb, const AbstractEdge& e) const {
+  const unsigned cv = block_cost_[vb];
+  const unsigned cu = block_cost_[static_cast<std::size_t>(static_cast<std::int64_t>(vb) + e.block_offset)];
+  if (cu == 255 || cv == 255) return kUnreachable;
+  return static_cast<std::uint32_t>(
+      std::min<Cost>(graph_.costWithPenalty(e.base_cost, std::max(cu, cv)), kUnreachable - 1));
+}
+
+bool CoarseLattice::propagate(const std::vector<std::vector<AbstractEdge>>& edges, std::vector<std::uint32_t>& dist,
+                              detail::RadixHeap& heap, const GridStop* stop) const {
   for (std::uint32_t pops = 0; !heap.empty();) {
     const auto [d, v] = heap.pop();
     if (d != dist[v]) continue;
-    if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return {};
+    if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return false;
     const std::size_t vb = v / headings_;
-    const unsigned cv = block_cost_[vb];
     for (const AbstractEdge& e : edges[v % headings_]) {
-      const std::size_t ub = static_cast<std::size_t>(static_cast<std::int64_t>(vb) + e.block_offset);
-      const unsigned cu = block_cost_[ub];
-      if (cu == 255) continue;
-      const std::uint64_t nd = d + static_cast<std::uint64_t>(graph_.costWithPenalty(e.base_cost, std::max(cu, cv)));
+      const std::uint32_t w = edgeCost(vb, e);
+      if (w == kUnreachable) continue;
+      const std::uint64_t nd = static_cast<std::uint64_t>(d) + w;
       const std::size_t u = static_cast<std::size_t>(static_cast<std::int64_t>(v) + e.node_offset);
       if (nd < dist[u]) {
         dist[u] = static_cast<std::uint32_t>(std::min<std::uint64_t>(nd, kUnreachable - 1));
@@ -120,7 +121,107 @@ std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool
       }
     }
   }
+  return true;
+}
+
+std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const GridStop* stop) const {
+  std::vector<std::uint32_t> dist(static_cast<std::size_t>(pw_) * ph_ * headings_, kUnreachable);
+  const std::size_t goal = index(gx, gy, gh);
+  if (block_cost_[goal / headings_] == 255) return dist;
+  detail::RadixHeap heap;
+  dist[goal] = 0;
+  heap.push(0, static_cast<std::uint32_t>(goal));
+  if (!propagate(forward ? forward_ : reverse_, dist, heap, stop)) return {};
   return dist;
+}
+
+// The two waves of HeuristicGridBuilder::repairGrid, on the abstract graph: a node's old
+// distance holds if a predecessor that kept its own reaches it over an edge of the new
+// abstraction at exactly that distance (predecessors in this search's direction are found
+// through the other direction's edge lists, which hold the same edges reversed); the nodes
+// that fail are filled in again by a Dijkstra from the nodes near the change and the failed
+// nodes' predecessors.
+std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint32_t> old,
+                                                          const std::vector<CellRect>& changed, int gx, int gy,
+                                                          int gh, bool forward, const GridStop* stop) const {
+  const std::size_t total = static_cast<std::size_t>(pw_) * ph_ * headings_;
+  // Saturated distances break the equality test (every edge costs at least 1).
+  if (old.size() != total || std::find(old.begin(), old.end(), kUnreachable - 1) != old.end()) {
+    return distances(gx, gy, gh, forward, stop);
+  }
+  const std::vector<std::vector<AbstractEdge>>& edges = forward ? forward_ : reverse_;
+  const std::vector<std::vector<AbstractEdge>>& into = forward ? reverse_ : forward_;
+  std::vector<std::uint32_t>& dist = old;
+  const std::size_t goal = index(gx, gy, gh);
+  // Every node of a block within an edge's reach of a changed cell's block: its edges, in and
+  // out, may cost something else now (padded block coordinates).
+  std::vector<std::array<int, 4>> near;
+  for (const CellRect& r : changed) {
+    const int x0 = std::max(r.x0, 0), y0 = std::max(r.y0, 0);
+    const int x1 = std::min(r.x1, graph_.width()), y1 = std::min(r.y1, graph_.height());
+    if (x0 >= x1 || y0 >= y1) continue;
+    near.push_back({x0 / k_, y0 / k_, std::min(pw_ - 1, (x1 - 1) / k_ + 2 * pad_),
+                    std::min(ph_ - 1, (y1 - 1) / k_ + 2 * pad_)});
+  }
+  auto forNear = [&](auto&& f) {
+    for (const auto& b : near) {
+      for (int by = b[1]; by <= b[3]; ++by) {
+        for (int bx = b[0]; bx <= b[2]; ++bx) {
+          const std::size_t node = (static_cast<std::size_t>(by) * pw_ + bx) * headings_;
+          for (int h = 0; h < headings_; ++h) f(node + h);
+        }
+      }
+    }
+  };
+  auto holds = [&](std::size_t u) {
+    const std::size_t ub = u / headings_;
+    if (block_cost_[ub] == 255) return false;
+    if (u == goal) return true;
+    for (const AbstractEdge& p : into[u % headings_]) {
+      const std::size_t v = static_cast<std::size_t>(static_cast<std::int64_t>(u) + p.node_offset);
+      if (dist[v] == kUnreachable) continue;
+      const std::uint32_t w = edgeCost(ub, p);  // the same edge, v -> u, as seen from u
+      if (w != kUnreachable && static_cast<std::uint64_t>(dist[v]) + w == dist[u]) return true;
+    }
+    return false;
+  };
+  std::uint32_t pops = 0;
+  std::vector<std::uint32_t> failed;
+  {
+    detail::RadixHeap heap;
+    forNear([&](std::size_t u) {
+      if (dist[u] != kUnreachable) heap.push(dist[u], static_cast<std::uint32_t>(u));
+    });
+    while (!heap.empty()) {
+      const auto [d, u] = heap.pop();
+      if (d != dist[u]) continue;
+      if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return {};
+      if (holds(u)) continue;
+      dist[u] = kUnreachable;
+      failed.push_back(u);
+      for (const AbstractEdge& e : edges[u % headings_]) {
+        const std::size_t t = static_cast<std::size_t>(static_cast<std::int64_t>(u) + e.node_offset);
+        if (dist[t] != kUnreachable && dist[t] > d) heap.push(dist[t], static_cast<std::uint32_t>(t));
+      }
+    }
+  }
+  detail::RadixHeap heap;
+  if (block_cost_[goal / headings_] != 255 && dist[goal] != 0) {
+    dist[goal] = 0;
+    heap.push(0, static_cast<std::uint32_t>(goal));
+  }
+  forNear([&](std::size_t u) {
+    if (dist[u] != kUnreachable) heap.push(dist[u], static_cast<std::uint32_t>(u));
+  });
+  for (const std::uint32_t u : failed) {
+    for (const AbstractEdge& p : into[u % headings_]) {
+      const std::size_t v = static_cast<std::size_t>(static_cast<std::int64_t>(u) + p.node_offset);
+      if (dist[v] != kUnreachable) heap.push(dist[v], static_cast<std::uint32_t>(v));
+    }
+  }
+  if (!propagate(edges, dist, heap, stop)) return {};
+  if (std::find(dist.begin(), dist.end(), kUnreachable - 1) != dist.end()) return distances(gx, gy, gh, forward, stop);
+  return old;
 }
 
 }  // namespace lattice

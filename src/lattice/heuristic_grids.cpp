@@ -618,7 +618,9 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
   auto worker = [&]() {
     for (std::size_t t; !stopped && (t = next.fetch_add(1)) < tasks.size();) {
       if (tasks[t] < 0) {
-        out->coarse = coarse_->distances(gx, gy, gh, backward, stop);
+        out->coarse = old && !old->coarse.empty()
+                          ? coarse_->repairDistances(old->coarse, *changed, gx, gy, gh, backward, stop)
+                          : coarse_->distances(gx, gy, gh, backward, stop);
         out->coarse_lattice = coarse_.get();
         if (out->coarse.empty()) stopped = true;
       } else if (!grid(tasks[t])) {

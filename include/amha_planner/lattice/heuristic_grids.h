@@ -110,8 +110,8 @@ class HeuristicGridBuilder {
   /// repaired from `old`: grids computed for a version of this map whose cells differed from
   /// this one's only inside the rectangles `changed` (with the same configuration). Equal to
   /// compute() with the same arguments, but a grid visits only the cells whose distance the
-  /// change can alter: the cells near the change and those whose shortest path led through it.
-  /// The coarse distances are computed again (they are small), and a grid that cannot be
+  /// change can alter: the cells near the change and those whose shortest path led through it
+  /// (the coarse distances likewise, CoarseLattice::repairDistances). A grid that cannot be
   /// repaired (old holds it at another kind's scale, or its distances could saturate) is
   /// computed in full. If `old` is the only reference to its grids (the caller moved its own
   /// in), they are repaired in place instead of copied, and are spent even if `stop` ends the
