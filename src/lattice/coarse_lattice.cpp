@@ -9,6 +9,7 @@
 
 #include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
+#include "distance_repair.h"
 #include "radix_heap.h"
 
 namespace amha {
@@ -135,12 +136,8 @@ std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool
   return dist;
 }
 
-// The two waves of HeuristicGridBuilder::repairGrid, on the abstract graph: a node's old
-// distance holds if a predecessor that kept its own reaches it over an edge of the new
-// abstraction at exactly that distance (predecessors in this search's direction are found
-// through the other direction's edge lists, which hold the same edges reversed); the nodes
-// that fail are filled in again by a Dijkstra from the nodes near the change and the failed
-// nodes' predecessors.
+// detail::repairDistances on the abstract graph. Predecessors in this search's direction are
+// found through the other direction's edge lists, which hold the same edges reversed.
 std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint32_t> old,
                                                           const std::vector<CellRect>& changed, int gx, int gy,
                                                           int gh, bool forward, const GridStop* stop) const {
@@ -151,8 +148,8 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   }
   const std::vector<std::vector<AbstractEdge>>& edges = forward ? forward_ : reverse_;
   const std::vector<std::vector<AbstractEdge>>& into = forward ? reverse_ : forward_;
-  std::vector<std::uint32_t>& dist = old;
-  const std::size_t goal = index(gx, gy, gh);
+  std::uint32_t* dist = old.data();
+  const std::uint32_t goal = static_cast<std::uint32_t>(index(gx, gy, gh));
   // Every node of a block within an edge's reach of a changed cell's block: its edges, in and
   // out, may cost something else now (padded block coordinates).
   std::vector<std::array<int, 4>> near;
@@ -167,60 +164,36 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
     for (const auto& b : near) {
       for (int by = b[1]; by <= b[3]; ++by) {
         for (int bx = b[0]; bx <= b[2]; ++bx) {
-          const std::size_t node = (static_cast<std::size_t>(by) * pw_ + bx) * headings_;
+          const std::uint32_t node = static_cast<std::uint32_t>((by * pw_ + bx) * headings_);
           for (int h = 0; h < headings_; ++h) f(node + h);
         }
       }
     }
   };
-  auto holds = [&](std::size_t u) {
+  auto holds = [&](std::uint32_t u) {
     const std::size_t ub = u / headings_;
     if (block_cost_[ub] == 255) return false;
     if (u == goal) return true;
     for (const AbstractEdge& p : into[u % headings_]) {
-      const std::size_t v = static_cast<std::size_t>(static_cast<std::int64_t>(u) + p.node_offset);
+      const std::uint32_t v = static_cast<std::uint32_t>(u + p.node_offset);
       if (dist[v] == kUnreachable) continue;
       const std::uint32_t w = edgeCost(ub, p);  // the same edge, v -> u, as seen from u
       if (w != kUnreachable && static_cast<std::uint64_t>(dist[v]) + w == dist[u]) return true;
     }
     return false;
   };
-  std::uint32_t pops = 0;
-  std::vector<std::uint32_t> failed;
-  {
-    detail::RadixHeap heap;
-    forNear([&](std::size_t u) {
-      if (dist[u] != kUnreachable) heap.push(dist[u], static_cast<std::uint32_t>(u));
-    });
-    while (!heap.empty()) {
-      const auto [d, u] = heap.pop();
-      if (d != dist[u]) continue;
-      if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return {};
-      if (holds(u)) continue;
-      dist[u] = kUnreachable;
-      failed.push_back(u);
-      for (const AbstractEdge& e : edges[u % headings_]) {
-        const std::size_t t = static_cast<std::size_t>(static_cast<std::int64_t>(u) + e.node_offset);
-        if (dist[t] != kUnreachable && dist[t] > d) heap.push(dist[t], static_cast<std::uint32_t>(t));
-      }
-    }
-  }
+  auto along = [&](const std::vector<std::vector<AbstractEdge>>& lists) {
+    return [&](std::uint32_t u, auto&& f) {
+      for (const AbstractEdge& e : lists[u % headings_]) f(static_cast<std::uint32_t>(u + e.node_offset));
+    };
+  };
+  auto propagateFrom = [&](detail::RadixHeap& heap) { return propagate(edges, old, heap, stop); };
   detail::RadixHeap heap;
-  if (block_cost_[goal / headings_] != 255 && dist[goal] != 0) {
-    dist[goal] = 0;
-    heap.push(0, static_cast<std::uint32_t>(goal));
+  if (!detail::repairDistances(dist, goal, block_cost_[goal / headings_] != 255, forNear, holds, along(edges),
+                               along(into), propagateFrom, stop, heap)) {
+    return {};
   }
-  forNear([&](std::size_t u) {
-    if (dist[u] != kUnreachable) heap.push(dist[u], static_cast<std::uint32_t>(u));
-  });
-  for (const std::uint32_t u : failed) {
-    for (const AbstractEdge& p : into[u % headings_]) {
-      const std::size_t v = static_cast<std::size_t>(static_cast<std::int64_t>(u) + p.node_offset);
-      if (dist[v] != kUnreachable) heap.push(dist[v], static_cast<std::uint32_t>(v));
-    }
-  }
-  if (!propagate(edges, dist, heap, stop)) return {};
-  if (std::find(dist.begin(), dist.end(), kUnreachable - 1) != dist.end()) return distances(gx, gy, gh, forward, stop);
+  if (std::find(old.begin(), old.end(), kUnreachable - 1) != old.end()) return distances(gx, gy, gh, forward, stop);
   return old;
 }
 

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "amha_planner/lattice/lattice_graph.h"
+#include "distance_repair.h"
 #include "radix_heap.h"
 
 namespace amha {
@@ -438,19 +439,10 @@ std::uint32_t HeuristicGridBuilder::moveCost(const Kind& kind, std::size_t i, st
   return kind.step[m * 256 + c];
 }
 
-// Repairs a grid after a change (a dynamic shortest-path update in two waves, as in LPA* or
-// dynamic brushfire), exactly: the result is the grid run() computes on the new levels.
-//  1. Raise: a cell's old distance still holds if some predecessor that still holds its own
-//     reaches it over a move of the new map at exactly that distance. Only the cells near the
-//     change (whose moves may cost something else now) and the cells that relied on a cell
-//     found not to hold can fail that test; they are visited in increasing old distance, so
-//     every predecessor is decided first (moves cost at least 1), and those that fail become
-//     unreachable.
-//  2. Lower: Dijkstra from every cell near the change and every cell next to one that failed,
-//     with their distances, which are all reachable on the new map; it lowers the distances that
-//     the change shortened and fills the failed cells in again.
-// The grids are distances from the goal, so "predecessor" follows dijkstra()'s relaxation: the
-// distance of j = i + move m is at most dist[i] + moveCost(i, m).
+// Repairs a grid after a change (detail::repairDistances), exactly: the result is the grid
+// run() computes on the new levels. The grids are distances from the goal, so a predecessor
+// follows dijkstra()'s relaxation: the distance of j = i + move m is at most
+// dist[i] + moveCost(i, m).
 bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const DistanceGrid& old,
                                       const std::vector<CellRect>& changed, DistanceGrid& grid,
                                       const GridStop* stop) const {
@@ -472,7 +464,7 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   const std::uint8_t* level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
-  const std::size_t goal = static_cast<std::size_t>(gy + 2) * pw + (gx + 2);
+  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
   // The cells whose moves (to or from them) may cost something else: a move's cells lie in the
   // box between its two ends.
   std::vector<CellRect> near;
@@ -484,59 +476,34 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   auto forNear = [&](auto&& f) {
     for (const CellRect& r : near) {
       for (int y = r.y0; y < r.y1; ++y) {
-        for (int x = r.x0; x < r.x1; ++x) f(static_cast<std::size_t>(y + 2) * pw + (x + 2));
+        for (int x = r.x0; x < r.x1; ++x) f(static_cast<std::uint32_t>((y + 2) * pw + (x + 2)));
       }
     }
   };
-  auto holds = [&](std::size_t c) {
+  auto holds = [&](std::uint32_t c) {
     if (level[c] == 255) return false;
     if (c == goal) return true;
     for (std::size_t m = 0; m < nm; ++m) {
-      const std::size_t i = static_cast<std::size_t>(static_cast<std::int64_t>(c) - off[m]);
+      const std::uint32_t i = static_cast<std::uint32_t>(c - off[m]);
       if (dist[i] == kUnreachable) continue;
       const std::uint32_t w = moveCost(kind, i, m);
       if (w != kUnreachable && static_cast<std::uint64_t>(dist[i]) + w == dist[c]) return true;
     }
     return false;
   };
-  std::uint32_t pops = 0;
-  auto stopped = [&] { return (++pops & 4095) == 0 && stop != nullptr && stop->requested(); };
-  // 1. Raise.
-  std::vector<std::uint32_t> failed;
-  {
-    detail::RadixHeap queue;
-    forNear([&](std::size_t c) {
-      if (dist[c] != kUnreachable) queue.push(dist[c], static_cast<std::uint32_t>(c));
-    });
-    while (!queue.empty()) {
-      const auto [d, c] = queue.pop();
-      if (d != dist[c]) continue;  // failed already
-      if (stopped()) return false;
-      if (holds(c)) continue;
-      dist[c] = kUnreachable;
-      failed.push_back(c);
-      for (std::size_t m = 0; m < nm; ++m) {
-        const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(c) + off[m]);
-        if (dist[j] != kUnreachable && dist[j] > d) queue.push(dist[j], static_cast<std::uint32_t>(j));
-      }
-    }
-  }
-  // 2. Lower. The goal is a source again if it was blocked before.
+  auto along = [&](std::int64_t sign) {  // the 8 or 16 moves are symmetric: out of = into
+    return [&, sign](std::uint32_t c, auto&& f) {
+      for (std::size_t m = 0; m < nm; ++m) f(static_cast<std::uint32_t>(c + sign * off[m]));
+    };
+  };
   detail::RadixHeap queue;
-  if (level[goal] != 255 && dist[goal] != 0) {
-    dist[goal] = 0;
-    queue.push(0, static_cast<std::uint32_t>(goal));
+  auto propagate = [&](detail::RadixHeap& q) {
+    return nm == 8 ? dijkstra8(kind, dist, q, stop) : dijkstra(kind, dist, q, stop);
+  };
+  if (!detail::repairDistances(dist, goal, level[goal] != 255, forNear, holds, along(+1), along(-1), propagate, stop,
+                               queue)) {
+    return false;
   }
-  forNear([&](std::size_t c) {
-    if (dist[c] != kUnreachable) queue.push(dist[c], static_cast<std::uint32_t>(c));
-  });
-  for (const std::uint32_t c : failed) {
-    for (std::size_t m = 0; m < nm; ++m) {
-      const std::size_t i = static_cast<std::size_t>(static_cast<std::int64_t>(c) - off[m]);
-      if (dist[i] != kUnreachable) queue.push(dist[i], static_cast<std::uint32_t>(i));
-    }
-  }
-  if (!(nm == 8 ? dijkstra8(kind, dist, queue, stop) : dijkstra(kind, dist, queue, stop))) return false;
   // The cells it did not pop keep old distances; a bound is enough (a saturated distance would
   // have been popped last).
   grid.max_distance = std::max(old.max_distance, queue.lastPopped());

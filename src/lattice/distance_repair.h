@@ -1,0 +1,74 @@
+// Repair of single-goal shortest distances after some edge costs changed (a dynamic
+// shortest-path update in two waves, as in LPA* or dynamic brushfire), shared by the heuristic
+// grids and the block abstraction. Exact: the result is what a fresh Dijkstra gives.
+//  1. Raise: a node's old distance still holds if some predecessor that kept its own reaches it
+//     over an edge of the new graph at exactly that distance. Only the nodes near the change
+//     (whose edges may cost something else now) and the nodes that relied on a node found not
+//     to hold can fail; they are visited in increasing old distance, so every predecessor is
+//     decided first (edges cost at least 1), and those that fail become unreachable.
+//  2. Lower: Dijkstra from every node near the change and every predecessor of a failed node,
+//     with their distances, which are all reachable on the new graph: it lowers what the change
+//     shortened and fills the failed nodes in again.
+// "Predecessor" follows the search's relaxation: dist[v] <= dist[u] + cost(u -> v) makes u a
+// predecessor of v. Saturated distances (kUnreachable - 1) break the equality test: the callers
+// compute those afresh.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "amha_planner/lattice/heuristic_grids.h"
+#include "radix_heap.h"
+
+namespace amha {
+namespace lattice {
+namespace detail {
+
+/// dist holds the old distances, and receives the new ones (in place). forNear(f) calls f(node)
+/// for every node near the change; holds(node) is the raise test above (false for a node that
+/// is now impassable; true for the goal if it is passable); forSuccessors(node, f) and
+/// forPredecessors(node, f) call f(other) along the relaxation's edges, out of and into node;
+/// propagate(queue) runs the Dijkstra of a fresh computation from the nodes in `queue` and
+/// returns false if stopped. goal_open: the goal is passable (a source again if it was not).
+/// Returns false if `stop` asked to stop (dist is then incomplete); `lower` receives the last
+/// key the second wave popped.
+template <class ForNear, class Holds, class ForSuccessors, class ForPredecessors, class Propagate>
+bool repairDistances(std::uint32_t* dist, std::uint32_t goal, bool goal_open, ForNear&& forNear, Holds&& holds,
+                     ForSuccessors&& forSuccessors, ForPredecessors&& forPredecessors, Propagate&& propagate,
+                     const GridStop* stop, RadixHeap& lower) {
+  std::vector<std::uint32_t> failed;
+  {
+    RadixHeap raise;
+    forNear([&](std::uint32_t v) {
+      if (dist[v] != kUnreachable) raise.push(dist[v], v);
+    });
+    for (std::uint32_t pops = 0; !raise.empty();) {
+      const auto [d, v] = raise.pop();
+      if (d != dist[v]) continue;  // failed already
+      if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return false;
+      if (holds(v)) continue;
+      dist[v] = kUnreachable;
+      failed.push_back(v);
+      forSuccessors(v, [&](std::uint32_t t) {
+        if (dist[t] != kUnreachable && dist[t] > d) raise.push(dist[t], t);
+      });
+    }
+  }
+  if (goal_open && dist[goal] != 0) {
+    dist[goal] = 0;
+    lower.push(0, goal);
+  }
+  forNear([&](std::uint32_t v) {
+    if (dist[v] != kUnreachable) lower.push(dist[v], v);
+  });
+  for (const std::uint32_t v : failed) {
+    forPredecessors(v, [&](std::uint32_t u) {
+      if (dist[u] != kUnreachable) lower.push(dist[u], u);
+    });
+  }
+  return propagate(lower);
+}
+
+}  // namespace detail
+}  // namespace lattice
+}  // namespace amha
