@@ -68,6 +68,23 @@ struct Robot {
   LatticeConfig config;
 };
 
+// A copy of `map` with the cells of `r` (clipped to the map) set to `value`.
+std::shared_ptr<GridMap> withCells(const GridMap& map, const CellRect& r, std::uint8_t value) {
+  auto out = std::make_shared<GridMap>(map);
+  for (int y = std::max(r.y0, 0); y < std::min(r.y1, map.height); ++y) {
+    for (int x = std::max(r.x0, 0); x < std::min(r.x1, map.width); ++x) {
+      out->cost[static_cast<std::size_t>(y) * map.width + x] = value;
+    }
+  }
+  return out;
+}
+
+// The cells within `half` of the pose's cell (a square).
+CellRect around(const Pose2D& p, double resolution, int half) {
+  const int x = static_cast<int>(p.x / resolution), y = static_cast<int>(p.y / resolution);
+  return {x - half, y - half, x + half + 1, y + half + 1};
+}
+
 std::vector<Robot> robots() {
   std::vector<Robot> out;
   LatticeConfig round;
@@ -206,10 +223,7 @@ TEST(LatticeIncremental, AnUpdatedPlannerPlansLikeAFreshOne) {
   // Wall off the middle, leaving a gap, in three updates.
   const CellRect walls[] = {{78, 0, 82, 50}, {78, 60, 82, 120}, {0, 0, 3, 3}};
   for (const CellRect& r : walls) {
-    auto next = std::make_shared<GridMap>(*map);
-    for (int y = r.y0; y < r.y1; ++y) {
-      for (int x = r.x0; x < r.x1; ++x) next->cost[static_cast<std::size_t>(y) * 160 + x] = kLethalCost;
-    }
+    auto next = withCells(*map, r, kLethalCost);
     planner = std::make_unique<LatticePlanner>(*planner, next, r);
     map = next;
   }
@@ -255,14 +269,8 @@ TEST(LatticeIncremental, AnUpdatedPlannerRepairsTheGridsOfItsPredecessor) {
     config.robot_radius = 0.15;
     auto planner = std::make_unique<LatticePlanner>(map, config);
     const Pose2D start{1.0, 1.0, 0.0}, goal{6.6, 4.4, 1.57};
-    auto clear = [&](GridMap& m, double x, double y) {  // the robot's surroundings made free
-      for (int dy = -8; dy <= 8; ++dy) {
-        for (int dx = -8; dx <= 8; ++dx) m.cost[static_cast<std::size_t>(y / 0.05 + dy) * 160 + (x / 0.05 + dx)] = 0;
-      }
-    };
-    auto base = std::make_shared<GridMap>(*map);
-    clear(*base, start.x, start.y);
-    clear(*base, goal.x, goal.y);
+    // The robot's surroundings made free.
+    auto base = withCells(*withCells(*map, around(start, 0.05, 8), 0), around(goal, 0.05, 8), 0);
     planner = std::make_unique<LatticePlanner>(*planner, base, CellRect{0, 0, 160, 120});
     PlannerConfig search;  // A-MHA*: every grid kind
     SearchLimits limits;
@@ -275,10 +283,7 @@ TEST(LatticeIncremental, AnUpdatedPlannerRepairsTheGridsOfItsPredecessor) {
     // Two updates with no query between them: a wall with a gap, then an obstacle.
     std::shared_ptr<GridMap> current = base;
     for (const CellRect& r : {CellRect{78, 0, 82, 70}, CellRect{100, 30, 112, 42}}) {
-      auto next = std::make_shared<GridMap>(*current);
-      for (int y = r.y0; y < r.y1; ++y) {
-        for (int x = r.x0; x < r.x1; ++x) next->cost[static_cast<std::size_t>(y) * 160 + x] = kLethalCost;
-      }
+      auto next = withCells(*current, r, kLethalCost);
       planner = std::make_unique<LatticePlanner>(*planner, next, r);
       current = next;
     }
@@ -319,9 +324,8 @@ TEST(LatticeIncremental, KeptGridsAndCachedOnesStayWithinTheCacheSize) {
   };
   EXPECT_EQ(source(a), "computed");
   EXPECT_EQ(source(b), "computed");  // b is now the most recently used
-  auto next = std::make_shared<GridMap>(*map);
-  next->cost[static_cast<std::size_t>(45) * 120 + 60] = kLethalCost;
-  planner = std::make_unique<LatticePlanner>(*planner, next, CellRect{60, 45, 61, 46});
+  const CellRect obstacle{60, 45, 61, 46};
+  planner = std::make_unique<LatticePlanner>(*planner, withCells(*map, obstacle, kLethalCost), obstacle);
   EXPECT_EQ(source(c), "computed");  // c, b and a would be three: a is dropped
   EXPECT_EQ(source(b), "repaired");
   EXPECT_EQ(source(a), "computed");
@@ -338,24 +342,14 @@ TEST(LatticeIncremental, ConcurrentQueriesWhileAPlannerIsBuiltFromThisOne) {
   auto first = std::make_shared<LatticePlanner>(map, config);
   // A start and goal clear of the random obstacles and of the update.
   const Pose2D start{0.6, 0.6, 0.0}, goal{6.3, 4.4, 0.0};
-  auto cleared = std::make_shared<GridMap>(*map);
-  for (const Pose2D& p : {start, goal}) {
-    for (int dy = -8; dy <= 8; ++dy) {
-      for (int dx = -8; dx <= 8; ++dx) {
-        cleared->cost[static_cast<std::size_t>(p.y / 0.05 + dy) * 140 + static_cast<std::size_t>(p.x / 0.05 + dx)] = 0;
-      }
-    }
-  }
+  auto cleared = withCells(*withCells(*map, around(start, 0.05, 8), 0), around(goal, 0.05, 8), 0);
   first = std::make_shared<LatticePlanner>(*first, cleared, CellRect{0, 0, 140, 100});
   PlannerConfig search;
   SearchLimits limits;
   limits.max_expansions = 50000;
   ASSERT_EQ(first->plan(start, goal, search, limits).error, QueryError::kNone);  // grids cached
-  auto next_map = std::make_shared<GridMap>(*cleared);
   const CellRect wall{60, 20, 64, 90};
-  for (int y = wall.y0; y < wall.y1; ++y) {
-    for (int x = wall.x0; x < wall.x1; ++x) next_map->cost[static_cast<std::size_t>(y) * 140 + x] = kLethalCost;
-  }
+  auto next_map = withCells(*cleared, wall, kLethalCost);
   LatticePlanner fresh_first(cleared, config), fresh_next(next_map, config);
   const PlanResult want_first = fresh_first.plan(start, goal, search, limits);
   const PlanResult want_next = fresh_next.plan(start, goal, search, limits);
