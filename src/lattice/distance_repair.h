@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "amha_planner/lattice/heuristic_grids.h"
@@ -43,7 +44,9 @@ bool repairDistances(std::uint32_t* dist, std::uint32_t goal, bool goal_open, Fo
       if (dist[v] != kUnreachable) raise.push(dist[v], v);
     });
     for (std::uint32_t pops = 0; !raise.empty();) {
-      const auto [d, v] = raise.pop();
+      // Not a structured binding: clang before 16 cannot capture one in the lambda below.
+      const std::pair<std::uint32_t, std::uint32_t> top = raise.pop();
+      const std::uint32_t d = top.first, v = top.second;
       if (d != dist[v]) continue;  // failed already
       if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return false;
       if (holds(v)) continue;
