@@ -255,41 +255,21 @@ class DialQueue {
 
 template <class Queue>
 bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const {
-  const std::uint8_t* __restrict level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
-  const std::int64_t* req = kind.required.data();
-  const int* req_count = kind.required_count.data();
-  const char* either = kind.either_side.data();
-  const std::uint32_t* step = kind.step.data();
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [d, i] = queue.pop();
     if (d != dist[i]) continue;
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
-    const unsigned li = level[i];
     for (std::size_t m = 0; m < nm; ++m) {
+      const std::uint32_t w = moveCost(kind, i, m);
+      if (w == kUnreachable) continue;
       const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + off[m]);
-      unsigned c = level[j];
-      if (c == 255) continue;
-      c = std::max(c, li);
-      const std::int64_t* r = req + m * kMaxRequired;
-      if (either[m]) {  // the two side cells: one passable suffices, the cheaper one counts
-        const unsigned side = std::min(level[static_cast<std::int64_t>(i) + r[0]],
-                                       level[static_cast<std::int64_t>(i) + r[1]]);
-        if (side == 255) continue;
-        c = std::max(c, side);
-      } else {
-        bool blocked = false;
-        for (int k = 0; k < req_count[m]; ++k) {
-          const unsigned lr = level[static_cast<std::int64_t>(i) + r[k]];
-          blocked |= lr == 255;
-          c = std::max(c, lr);
-        }
-        if (blocked) continue;
-      }
-      const std::uint64_t nd = static_cast<std::uint64_t>(d) + step[m * 256 + c];
-      if (nd < dist[j]) {
-        const std::uint32_t v = static_cast<std::uint32_t>(std::min<std::uint64_t>(nd, kUnreachable - 1));
+      // Saturating before the comparison, as dijkstra8 does: a distance past kUnreachable - 1
+      // is still a reachable cell.
+      const std::uint32_t v =
+          static_cast<std::uint32_t>(std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
+      if (v < dist[j]) {
         dist[j] = v;
         queue.push(v, static_cast<std::uint32_t>(j));
       }
@@ -551,14 +531,11 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
     if (wanted[k] && !wanted[alias_[k]] && std::find(tasks.begin(), tasks.end(), alias_[k]) == tasks.end()) tasks.push_back(alias_[k]);
   }
   // old's grid of kind k can be repaired into kind k's if it holds kind k's own distances
-  // (another kind's, rescaled, cannot), for the same goal and map size.
+  // (another kind's, rescaled, cannot), for the same map size (repair() passes old's goal).
   const DistanceGrid* base[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
   for (int k : tasks) {
     const DistanceGrid* g = k >= 0 && old ? old->grids[k].get() : nullptr;
-    if (g != nullptr && old->scale[k] == 1.0 && g->width == width_ && g->height == height_ && old->goal_x == gx &&
-        old->goal_y == gy) {
-      base[k] = g;
-    }
+    if (g != nullptr && old->scale[k] == 1.0 && g->width == width_ && g->height == height_) base[k] = g;
   }
   // A grid nobody else holds (the caller gave up old, and no other task reads it) is repaired in
   // place: copying a big grid costs more than the repair itself. The grids in GoalHeuristics

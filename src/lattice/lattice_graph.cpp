@@ -173,13 +173,11 @@ void LatticeGraph::buildActions() {
   }
   action_index_[n] = actions_.size();
   linkActionsInto();
-  // Clearance only decides "clearance > sweep_radius": a cell keeps its class, the number of
-  // distinct radii its clearance exceeds. More than 255 radii are first rounded up onto 255
-  // levels: a larger radius only sends the search to the full footprint check more often.
+  // Clearance only decides "clearance > sweep_radius": a cell keeps its class (clearance()).
   std::vector<float> sweeps;
   for (const LatticeAction& a : actions_) sweeps.push_back(a.sweep_radius);
-  const std::vector<float> radii = clearanceClassRadii(std::move(sweeps));
-  class_radii_ = radii;
+  class_radii_ = clearanceClassRadii(std::move(sweeps));
+  const auto& radii = class_radii_;
   for (LatticeAction& a : actions_) {
     // The smallest listed radius >= the action's own (its own, unless rounded up).
     a.sweep_class = static_cast<std::uint8_t>(std::lower_bound(radii.begin(), radii.end(), a.sweep_radius) - radii.begin());

@@ -21,9 +21,16 @@ struct LatticePlanner::Impl {
   std::unique_ptr<LatticeGraph> graph;
   std::unique_ptr<HeuristicGridBuilder> builder;
 
-  struct CacheEntry {
+  /// Which grids: a goal (or, searching backward, a start) and which kinds were wanted.
+  struct GoalKey {
     int x, y, heading;
     bool inadmissible, backward;
+    bool operator==(const GoalKey& o) const {
+      return x == o.x && y == o.y && heading == o.heading && inadmissible == o.inadmissible && backward == o.backward;
+    }
+  };
+  struct CacheEntry {
+    GoalKey key;
     std::uint64_t serial;  // tells this entry from a later one for the same goal
     std::shared_future<std::shared_ptr<const GoalHeuristics>> grids;
   };
@@ -33,8 +40,7 @@ struct LatticePlanner::Impl {
   /// Grids of the planners this one was built from, for goals it has not computed yet, with
   /// the areas changed since (LatticeConfig::repair_heuristics): repaired on first use.
   struct StaleEntry {
-    int x, y, heading;
-    bool inadmissible, backward;
+    GoalKey key;
     std::shared_ptr<const GoalHeuristics> grids;
     std::vector<CellRect> changed;
   };
@@ -44,17 +50,15 @@ struct LatticePlanner::Impl {
   /// A chain of more updates than this is not repaired: its areas may cover the map.
   static constexpr std::size_t kMaxChangedAreas = 32;
 
+  std::size_t capacity() const { return static_cast<std::size_t>(graph->config().heuristic_cache_size); }
+
   /// Takes the grids of `previous` (cached or stale) over as stale entries, `changed` added.
   void inheritGrids(Impl& previous, const CellRect& changed) {
-    const std::size_t capacity = static_cast<std::size_t>(graph->config().heuristic_cache_size);
     std::lock_guard<std::mutex> lock(previous.mutex);
     auto add = [&](const StaleEntry& e) {
-      if (stale.size() >= capacity || e.changed.size() >= kMaxChangedAreas) return;
+      if (stale.size() >= capacity() || e.changed.size() >= kMaxChangedAreas) return;
       for (const StaleEntry& s : stale) {
-        if (s.x == e.x && s.y == e.y && s.heading == e.heading && s.inadmissible == e.inadmissible &&
-            s.backward == e.backward) {
-          return;
-        }
+        if (s.key == e.key) return;
       }
       stale.push_back(e);
       if (!changed.empty()) stale.back().changed.push_back(changed);
@@ -68,7 +72,7 @@ struct LatticePlanner::Impl {
       } catch (...) {
         continue;
       }
-      if (grids) add(StaleEntry{e.x, e.y, e.heading, e.inadmissible, e.backward, grids, {}});
+      if (grids) add(StaleEntry{e.key, grids, {}});
     }
     for (const StaleEntry& e : previous.stale) add(e);
   }
@@ -80,6 +84,7 @@ struct LatticePlanner::Impl {
   std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
                                                      bool backward, const GridStop& stop, double* seconds,
                                                      HeuristicSource* source) {
+    const GoalKey key{x, y, heading, inadmissible, backward};
     const auto t0 = std::chrono::steady_clock::now();
     auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     *seconds = 0.0;
@@ -94,8 +99,7 @@ struct LatticePlanner::Impl {
       {
         std::lock_guard<std::mutex> lock(mutex);
         for (auto it = cache.begin(); it != cache.end(); ++it) {
-          if (it->x == x && it->y == y && it->heading == heading && it->inadmissible == inadmissible &&
-              it->backward == backward) {
+          if (it->key == key) {
             cache.splice(cache.begin(), cache, it);
             future = it->grids;
             break;
@@ -103,20 +107,17 @@ struct LatticePlanner::Impl {
         }
         if (!future.valid()) {
           serial = next_serial++;
-          cache.push_front(CacheEntry{x, y, heading, inadmissible, backward, serial, promise.get_future().share()});
-          while (cache.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) cache.pop_back();
+          cache.push_front(CacheEntry{key, serial, promise.get_future().share()});
+          while (cache.size() > capacity()) cache.pop_back();
           for (auto it = stale.begin(); it != stale.end(); ++it) {
-            if (it->x == x && it->y == y && it->heading == heading && it->inadmissible == inadmissible &&
-                it->backward == backward) {
+            if (it->key == key) {
               stale_grids = std::move(it->grids);
               stale_changed = std::move(it->changed);
               stale.erase(it);
               break;
             }
           }
-          while (!stale.empty() && cache.size() + stale.size() > static_cast<std::size_t>(graph->config().heuristic_cache_size)) {
-            stale.pop_back();
-          }
+          while (!stale.empty() && cache.size() + stale.size() > capacity()) stale.pop_back();
         }
       }
       auto forget = [&] {
