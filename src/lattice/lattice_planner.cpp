@@ -8,7 +8,9 @@
 #include <future>
 #include <list>
 #include <mutex>
+#include <stdexcept>
 
+#include "amha_planner/lattice/goal_tolerance.h"
 #include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_problem.h"
@@ -242,39 +244,85 @@ QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, s
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
                                 const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
+  return plan(start, goal, 0.0, algorithm, limits, on_solution);
+}
+
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, double goal_tolerance,
+                                const PlannerConfig& algorithm, const SearchLimits& limits,
+                                const std::function<void(const LatticeSolution&)>& on_solution) {
+  if (!std::isfinite(goal_tolerance) || goal_tolerance < 0.0) {
+    throw std::invalid_argument("the goal tolerance must be finite and >= 0 (metres)");
+  }
+  const auto call_start = std::chrono::steady_clock::now();
   PlanResult result;
   result.error = checkQuery(start, goal, &result.message);
-  if (result.error != QueryError::kNone) return result;
+  const bool substitute = result.error == QueryError::kGoalInCollision && goal_tolerance > 0.0;
+  if (result.error != QueryError::kNone && !substitute) return result;
   std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
   const LatticeGraph& g = *impl_->graph;
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   g.poseToState(goal, &t.x, &t.y, &t.heading);
+  // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
+  // a big map).
+  GridStop stop;
+  stop.cancel = limits.cancel;
+  if (limits.time_limit_s < 1e9) {
+    stop.deadline = call_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                     std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
+  }
+  auto stopped_status = [&] {
+    const bool cancelled = limits.cancel != nullptr && limits.cancel->load();
+    return cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
+  };
+  if (substitute) {
+    const GoalChoice c = nearestReachableGoal(g, goal, goal_tolerance, s.x, s.y, &stop);
+    result.goal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - call_start).count();
+    char tol[64];
+    std::snprintf(tol, sizeof tol, "%.3f m", goal_tolerance);
+    switch (c.outcome) {
+      case GoalChoice::Outcome::kStopped:
+        result.error = QueryError::kNone;
+        result.message.clear();
+        result.search.status = stopped_status();
+        return result;
+      case GoalChoice::Outcome::kNoFreePose:
+        result.message += "; no collision-free pose lies within the goal tolerance of " + std::string(tol);
+        return result;
+      case GoalChoice::Outcome::kNoneReachable:
+        result.error = QueryError::kGoalUnreachable;
+        result.message += "; the collision-free poses within the goal tolerance of " + std::string(tol) +
+                          " all lie in free space that the start's does not connect to";
+        return result;
+      case GoalChoice::Outcome::kFound:
+        break;
+    }
+    t = LatticeState{c.x, c.y, c.heading};
+    result.error = QueryError::kNone;
+    result.goal_substituted = true;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "; planning to the nearest reachable collision-free pose instead, %s, %.3f m and "
+                  "%.3f rad from it (goal tolerance %s)", poseText(g.stateToPose(c.x, c.y, c.heading)).c_str(),
+                  c.distance, c.heading_difference, tol);
+    result.message += buf;
+  }
+  result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
   // Algorithms that read only the anchor do not need the inadmissible grids.
   const bool uses_inadmissible = (algorithm.algorithm == Algorithm::kAmhaStar || algorithm.algorithm == Algorithm::kMhaStar) &&
                                  algorithm.max_inadmissible > 0 && g.config().num_inadmissible > 0;
   // Backward search runs from the goal to the start, with heuristics measured from the start.
   const bool backward = g.config().backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
-  // The grids honour the cancel flag and the time budget too (seconds on a big map).
-  GridStop stop;
-  stop.cancel = limits.cancel;
-  if (limits.time_limit_s < 1e9) {
-    stop.deadline = std::chrono::steady_clock::now() +
-                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                        std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
-  }
   auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, stop, &result.heuristic_seconds,
                                     &result.heuristic_source);
   if (!grids) {
-    const bool cancelled = limits.cancel != nullptr && limits.cancel->load();
-    result.search.status = cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
+    result.search.status = stopped_status();
     return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time
   }
   LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward);
   SearchLimits remaining = limits;
-  remaining.time_limit_s = std::max(0.0, limits.time_limit_s - result.heuristic_seconds);
-  const double offset = result.heuristic_seconds;
+  const double offset = result.goal_seconds + result.heuristic_seconds;
+  remaining.time_limit_s = std::max(0.0, limits.time_limit_s - offset);
   SolutionCallback cb = [&](const Solution& sol) {
     LatticeSolution ls;
     ls.search = sol;
@@ -313,6 +361,7 @@ const char* queryErrorName(QueryError e) {
     case QueryError::kGoalOutOfMap: return "goal_out_of_map";
     case QueryError::kStartInCollision: return "start_in_collision";
     case QueryError::kGoalInCollision: return "goal_in_collision";
+    case QueryError::kGoalUnreachable: return "goal_unreachable";
   }
   return "unknown";
 }

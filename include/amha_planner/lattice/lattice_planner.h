@@ -153,6 +153,9 @@ enum class QueryError {
   kGoalOutOfMap,
   kStartInCollision,
   kGoalInCollision,
+  /// With a goal tolerance: the goal is in collision and the collision-free poses within the
+  /// tolerance are all provably out of the start's reach (added after the API freeze).
+  kGoalUnreachable,
 };
 
 /// Search costs are integers; this many units make one metre of free, straight driving.
@@ -162,8 +165,8 @@ constexpr double kCostUnitsPerMetre = 1000.0;
 struct LatticeSolution {
   Solution search;            ///< ids, cost (units), bounds, timing, iteration, weights
   std::vector<Pose2D> poses;  ///< the path in the map frame, intermediate poses included
-  /// search.elapsed_s plus the time this plan() call spent computing heuristic grids
-  /// (added after the API freeze).
+  /// search.elapsed_s plus the time this plan() call spent before the search: computing
+  /// heuristic grids and, with a goal tolerance, choosing the goal (added after the API freeze).
   double elapsed_total_s = 0.0;
 };
 
@@ -176,7 +179,8 @@ enum class HeuristicSource {
 
 struct PlanResult {
   QueryError error = QueryError::kNone;
-  std::string message;        ///< human-readable reason when error != kNone
+  /// Human-readable reason when error != kNone; when goal_substituted, what replaced the goal.
+  std::string message;
   SearchResult search;        ///< status and every solution (state ids)
   std::vector<LatticeSolution> solutions;  ///< the same solutions, as poses
   /// Seconds this call spent computing the goal's heuristic grids, or waiting for another call
@@ -184,6 +188,17 @@ struct PlanResult {
   /// it counts against limits.time_limit_s (added after the API freeze).
   double heuristic_seconds = 0.0;
   HeuristicSource heuristic_source = HeuristicSource::kCached;  ///< (added after the API freeze)
+  /// The pose the search plans to: the centre of the goal's cell with the goal's heading bin
+  /// or, when a goal tolerance replaced an obstructed goal, that substitute (set whenever a
+  /// search is run; added after the API freeze).
+  Pose2D planned_goal;
+  /// True when the goal was in collision and a goal tolerance replaced it by planned_goal
+  /// (message then says so); the solutions' bounds are relative to the optimal cost to
+  /// planned_goal.
+  bool goal_substituted = false;
+  /// Seconds spent choosing that substitute; like heuristic_seconds, they count against
+  /// limits.time_limit_s.
+  double goal_seconds = 0.0;
 };
 
 /// A lattice planner for one map and one robot. Construction does the per-map work (loads or
@@ -217,6 +232,16 @@ class LatticePlanner {
   /// and time budget of `limits` also stop the computation of a new goal's heuristic grids
   /// (status kCancelled / kTimeLimit, no solution; the grids are then not cached).
   PlanResult plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
+                  const SearchLimits& limits,
+                  const std::function<void(const LatticeSolution&)>& on_solution = {});
+  /// The same with a goal tolerance (metres, finite and >= 0, else std::invalid_argument), as
+  /// nav_msgs/GetPlan's: a goal that is inside the map but in collision is replaced by the
+  /// nearest collision-free pose within `goal_tolerance` of it that the start may reach
+  /// (nearestReachableGoal in goal_tolerance.h; PlanResult::goal_substituted and planned_goal
+  /// say so). A collision-free goal is planned to exactly, whatever the tolerance. If there is
+  /// no collision-free pose within the tolerance the error is kGoalInCollision, if none of them
+  /// is reachable kGoalUnreachable. The time spent choosing counts against the budget.
+  PlanResult plan(const Pose2D& start, const Pose2D& goal, double goal_tolerance, const PlannerConfig& algorithm,
                   const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});
 
