@@ -65,6 +65,7 @@ std::uint32_t statusForQueryError(lat::QueryError e) {
     case lat::QueryError::kStartInCollision: return Status::INVALID_START;
     case lat::QueryError::kGoalNotFinite:
     case lat::QueryError::kGoalInCollision: return Status::INVALID_GOAL;
+    case lat::QueryError::kGoalUnreachable: return Status::NO_PATH_FOUND;
     case lat::QueryError::kStartOutOfMap:
     case lat::QueryError::kGoalOutOfMap: return Status::OUT_OF_MAP;
     case lat::QueryError::kNone: break;
@@ -99,6 +100,8 @@ void moveResponse(Plan::Response&& in, Result* out) {
   out->planning_time = in.planning_time;
   out->expansions = in.expansions;
   out->solutions = std::move(in.solutions);
+  out->goal_substituted = in.goal_substituted;
+  out->planned_goal = std::move(in.planned_goal);
 }
 
 }  // namespace
@@ -464,6 +467,11 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "time_budget must be finite and >= 0 (0: the default)";
       return res;
     }
+    if (!std::isfinite(r.goal_tolerance) || r.goal_tolerance < 0.0) {
+      res.status = Status::INVALID_REQUEST;
+      res.message = "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)";
+      return res;
+    }
     geometry_msgs::PoseStamped start, goal;
     if (!toGlobalFrame(r.start, true, &start, &res)) return res;
     if (!toGlobalFrame(r.goal, false, &goal, &res)) return res;
@@ -490,8 +498,8 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
       res.solutions.push_back(std::move(m));
     };
-    const lat::PlanResult result = planner->plan(s, g, config, limits, on_solution);
-    res.planning_time = result.search.elapsed_s + result.heuristic_seconds;
+    const lat::PlanResult result = planner->plan(s, g, r.goal_tolerance, config, limits, on_solution);
+    res.planning_time = result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds;
     if (result.error == lat::QueryError::kNone) {
       ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
                 result.heuristic_seconds);
@@ -503,6 +511,16 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = result.message;
       return res;
     }
+    res.goal_substituted = result.goal_substituted;
+    if (result.planned_goal) {
+      res.planned_goal.header.frame_id = frame;
+      res.planned_goal.header.stamp = stamp;
+      res.planned_goal.pose.position.x = result.planned_goal->x;
+      res.planned_goal.pose.position.y = result.planned_goal->y;
+      res.planned_goal.pose.orientation = quaternionFromYaw(result.planned_goal->theta);
+    }
+    // Told after the outcome: "...; goal (..) is in collision; planning to ... instead".
+    const std::string substitution = result.goal_substituted ? "; " + result.message : "";
     const auto status = result.search.status;
     if (!res.solutions.empty()) {
       const PlanSolution& best = res.solutions.back();
@@ -540,6 +558,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
           res.message = "the search reported no solution after finding one: " + summary;
           break;
       }
+      res.message += substitution;
       return res;
     }
     switch (status) {
@@ -566,6 +585,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
                       ") without a solution";
         break;
     }
+    res.message += substitution;
   } catch (const std::exception& e) {
     res.status = Status::INTERNAL_ERROR;
     res.message = std::string("planner failure: ") + e.what();
@@ -614,6 +634,7 @@ bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
   r.algorithm = req.algorithm;
   r.w1 = req.w1;
   r.w2 = req.w2;
+  r.goal_tolerance = req.goal_tolerance;
   res = runBlocking(r);
   logOutcome("plan", res);
   return true;
@@ -624,6 +645,7 @@ bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
   Request r;
   r.start = req.start;
   r.goal = req.goal;
+  r.goal_tolerance = req.tolerance;  // as move_base's: used when the goal is obstructed
   const Plan::Response out = runBlocking(r);
   logOutcome("make_plan", out);
   // Like move_base's make_plan: an empty plan means failure (the log says why).
@@ -642,6 +664,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
   r.algorithm = g->algorithm;
   r.w1 = g->w1;
   r.w2 = g->w2;
+  r.goal_tolerance = g->goal_tolerance;
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
   auto flag = newCancelFlag();

@@ -219,9 +219,10 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   ASSERT_TRUE(exact.search.hasSolution());
   ASSERT_TRUE(tolerant.search.hasSolution());
   EXPECT_FALSE(tolerant.goal_substituted);
+  ASSERT_TRUE(tolerant.planned_goal.has_value());
   EXPECT_EQ(tolerant.search.best().cost, exact.search.best().cost);
-  EXPECT_NEAR(tolerant.planned_goal.x, free_goal.x, 1e-9);
-  EXPECT_NEAR(tolerant.planned_goal.y, free_goal.y, 1e-9);
+  EXPECT_NEAR(tolerant.planned_goal->x, free_goal.x, 1e-9);
+  EXPECT_NEAR(tolerant.planned_goal->y, free_goal.y, 1e-9);
 
   // A goal on the box's outer wall: refused without a tolerance, replaced with one by the
   // nearest free cell outside (x = 27: the robot's 2-cell radius keeps it off x = 28, 29).
@@ -233,12 +234,13 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   ASSERT_TRUE(r.search.hasSolution());
   EXPECT_TRUE(r.goal_substituted);
   EXPECT_NE(r.message.find("nearest reachable collision-free pose"), std::string::npos) << r.message;
-  EXPECT_NEAR(r.planned_goal.x, cellCentre(27, 40).x, 1e-9);
-  EXPECT_NEAR(r.planned_goal.y, cellCentre(27, 40).y, 1e-9);
-  EXPECT_NEAR(r.planned_goal.theta, 0.0, 1e-9);
+  ASSERT_TRUE(r.planned_goal.has_value());
+  EXPECT_NEAR(r.planned_goal->x, cellCentre(27, 40).x, 1e-9);
+  EXPECT_NEAR(r.planned_goal->y, cellCentre(27, 40).y, 1e-9);
+  EXPECT_NEAR(r.planned_goal->theta, 0.0, 1e-9);
   const Pose2D& end = r.solutions.back().poses.back();
-  EXPECT_NEAR(end.x, r.planned_goal.x, 1e-9);
-  EXPECT_NEAR(end.y, r.planned_goal.y, 1e-9);
+  EXPECT_NEAR(end.x, r.planned_goal->x, 1e-9);
+  EXPECT_NEAR(end.y, r.planned_goal->y, 1e-9);
   EXPECT_LE(std::hypot(end.x - on_wall.x, end.y - on_wall.y), 0.5);
 
   // A goal on the inner side of the wall: the free inside (x = 34, 3 cells away) is nearer
@@ -247,10 +249,10 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   const Pose2D inner_wall = cellCentre(31, 40, 0.0);
   r = planner.plan(start, inner_wall, 0.5, astar, SearchLimits());
   ASSERT_TRUE(r.search.hasSolution()) << r.message;
-  EXPECT_LT(r.planned_goal.x, 30 * 0.05);
+  EXPECT_LT(r.planned_goal->x, 30 * 0.05);
   r = planner.plan(cellCentre(40, 40), inner_wall, 0.5, astar, SearchLimits());
   ASSERT_TRUE(r.search.hasSolution()) << r.message;
-  EXPECT_NEAR(r.planned_goal.x, cellCentre(34, 40).x, 1e-9);
+  EXPECT_NEAR(r.planned_goal->x, cellCentre(34, 40).x, 1e-9);
 
   // Too small a tolerance: still in collision, and the message says why.
   r = planner.plan(start, on_wall, 0.1, astar, SearchLimits());
@@ -283,7 +285,7 @@ TEST(GoalToleranceTest, SubstitutePathsValidateAndAreOptimalForTheSubstitute) {
   const PlanResult a = planner.plan(start, goal, 0.4, defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_TRUE(a.search.hasSolution()) << a.message;
   ASSERT_TRUE(a.goal_substituted);
-  const PlanResult direct = planner.plan(start, a.planned_goal, defaultConfig(Algorithm::kAStar), SearchLimits());
+  const PlanResult direct = planner.plan(start, *a.planned_goal, defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_TRUE(direct.search.hasSolution());
   EXPECT_EQ(a.search.best().cost, direct.search.best().cost);
   for (const Algorithm alg : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kAnaStar}) {
@@ -291,8 +293,8 @@ TEST(GoalToleranceTest, SubstitutePathsValidateAndAreOptimalForTheSubstitute) {
     ASSERT_TRUE(r.search.hasSolution()) << algorithmName(alg);
     EXPECT_TRUE(r.goal_substituted);
     for (const LatticeSolution& s : r.solutions) {
-      EXPECT_NEAR(s.poses.back().x, a.planned_goal.x, 1e-9) << algorithmName(alg);
-      EXPECT_NEAR(s.poses.back().y, a.planned_goal.y, 1e-9) << algorithmName(alg);
+      EXPECT_NEAR(s.poses.back().x, a.planned_goal->x, 1e-9) << algorithmName(alg);
+      EXPECT_NEAR(s.poses.back().y, a.planned_goal->y, 1e-9) << algorithmName(alg);
       EXPECT_LE(static_cast<double>(s.search.cost),
                 s.search.certified_bound * static_cast<double>(direct.search.best().cost) * (1 + 1e-12))
           << algorithmName(alg);
@@ -310,6 +312,7 @@ TEST(GoalToleranceTest, CancelBeforeTheChoiceStopsIt) {
   EXPECT_EQ(r.search.status, SearchStatus::kCancelled);
   EXPECT_TRUE(r.solutions.empty());
   EXPECT_FALSE(r.goal_substituted);
+  EXPECT_FALSE(r.planned_goal.has_value());
 }
 
 }  // namespace

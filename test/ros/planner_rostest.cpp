@@ -71,7 +71,8 @@ std::vector<PlanSolution> solutionsOf(std::uint32_t request_id, std::size_t expe
 
 Plan::Response plan(const geometry_msgs::PoseStamped& start,
                     const geometry_msgs::PoseStamped& goal, double budget,
-                    const std::string& algorithm = "", double w1 = 0, double w2 = 0) {
+                    const std::string& algorithm = "", double w1 = 0, double w2 = 0,
+                    double goal_tolerance = 0) {
   Plan srv;
   srv.request.start = start;
   srv.request.goal = goal;
@@ -79,6 +80,7 @@ Plan::Response plan(const geometry_msgs::PoseStamped& start,
   srv.request.algorithm = algorithm;
   srv.request.w1 = w1;
   srv.request.w2 = w2;
+  srv.request.goal_tolerance = goal_tolerance;
   EXPECT_TRUE(ros::service::call("/planner/plan", srv)) << "the ~plan service call failed";
   return srv.response;
 }
@@ -328,6 +330,85 @@ TEST(PlannerNodelet, MakePlanWorks) {
   EXPECT_TRUE(srv.response.plan.poses.empty());
 }
 
+Plan::Response planWithTolerance(const geometry_msgs::PoseStamped& goal, double tolerance) {
+  Plan srv;
+  srv.request.start = kRoomStart;
+  srv.request.goal = goal;
+  srv.request.time_budget = 5.0;
+  srv.request.goal_tolerance = tolerance;
+  EXPECT_TRUE(ros::service::call("/planner/plan", srv)) << "the ~plan service call failed";
+  return srv.response;
+}
+
+// A substitute goal: a valid path to planned_goal, which lies within the tolerance of the goal.
+void expectSubstitute(const Plan::Response& res, const geometry_msgs::PoseStamped& goal,
+                      double tolerance) {
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_TRUE(res.goal_substituted);
+  EXPECT_NE(res.message.find("instead"), std::string::npos) << res.message;
+  EXPECT_EQ(res.planned_goal.header.frame_id, "map");
+  const auto& p = res.planned_goal.pose.position;
+  EXPECT_LE(std::hypot(p.x - goal.pose.position.x, p.y - goal.pose.position.y), tolerance);
+  expectValidPath(res.path, kRoomStart, res.planned_goal, testMap());
+}
+
+TEST(PlannerNodelet, GoalToleranceReplacesAnObstructedGoalByAReachableOne) {
+  // A goal in the block: refused without a tolerance or with too small a one, replaced with one.
+  const auto in_block = pose(2.5, 4.0, 0.0, "map");
+  auto res = planWithTolerance(in_block, 0.0);
+  EXPECT_EQ(res.status, Status::INVALID_GOAL) << res.message;
+  EXPECT_FALSE(res.goal_substituted);
+  res = planWithTolerance(in_block, 0.3);
+  EXPECT_EQ(res.status, Status::INVALID_GOAL) << res.message;
+  EXPECT_NE(res.message.find("goal tolerance"), std::string::npos) << res.message;
+  expectSubstitute(planWithTolerance(in_block, 1.0), in_block, 1.0);
+
+  // A free goal is planned to exactly, tolerance or not.
+  res = planWithTolerance(kRoomGoal, 1.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_FALSE(res.goal_substituted);
+  expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
+
+  // In the closed pocket's wall: the free poses inside are nearer (about 0.3 m against 0.4 m)
+  // but out of reach, so the substitute is outside; with a tolerance that reaches only the
+  // inside, there is no path.
+  const auto in_pocket_wall = pose(7.15, 15.0, 0.0, "map");
+  res = planWithTolerance(in_pocket_wall, 0.6);
+  expectSubstitute(res, in_pocket_wall, 0.6);
+  EXPECT_LT(res.planned_goal.pose.position.x, 7.0);
+  res = planWithTolerance(pose(7.3, 15.0, M_PI / 2, "map"), 0.2);
+  EXPECT_EQ(res.status, Status::NO_PATH_FOUND) << res.message;
+  EXPECT_TRUE(res.path.poses.empty());
+
+  // make_plan reads GetPlan's tolerance.
+  nav_msgs::GetPlan srv;
+  srv.request.start = kRoomStart;
+  srv.request.goal = in_block;
+  srv.request.tolerance = 1.0;
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", srv));
+  ASSERT_FALSE(srv.response.plan.poses.empty());
+  const auto& end = srv.response.plan.poses.back().pose.position;
+  EXPECT_LE(std::hypot(end.x - 2.5, end.y - 4.0), 1.0);
+  EXPECT_EQ(checkPathCollisionFree(srv.response.plan, testMap(), testFootprint(), kLethal), "");
+  srv.request.tolerance = -1.0;
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", srv));
+  EXPECT_TRUE(srv.response.plan.poses.empty());
+
+  // The action too.
+  Client client("/planner/plan_anytime", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
+  PlanAnytimeGoal goal;
+  goal.start = kRoomStart;
+  goal.goal = in_block;
+  goal.goal_tolerance = 1.0;
+  client.sendGoal(goal);
+  ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
+  EXPECT_TRUE(client.getResult()->goal_substituted);
+  EXPECT_EQ(client.getResult()->planned_goal.header.frame_id, "map");
+  expectValidPath(client.getResult()->path, kRoomStart, client.getResult()->planned_goal, testMap());
+}
+
 TEST(PlannerNodelet, StartFromTfAndGoalInAnotherFrame) {
   // planner_nodelet.test publishes map -> base_link (1, 1, yaw 0.5) and map -> odom
   // (0.5, -0.5, yaw 0.3).
@@ -362,6 +443,7 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
     std::string algorithm;
     double w1;
     std::uint32_t expected;
+    double goal_tolerance = 0.0;
   };
   auto nan_position = kRoomStart;
   nan_position.pose.position.x = nan;
@@ -387,6 +469,8 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
       {"unknown algorithm", kRoomStart, kRoomGoal, 2, "dijkstra", 0, Status::INVALID_REQUEST},
       {"weight below 1", kRoomStart, kRoomGoal, 2, "", 0.5, Status::INVALID_REQUEST},
       {"negative time budget", kRoomStart, kRoomGoal, -1, "", 0, Status::INVALID_REQUEST},
+      {"negative goal tolerance", kRoomStart, kRoomGoal, 2, "", 0, Status::INVALID_REQUEST, -0.5},
+      {"NaN goal tolerance", kRoomStart, kRoomGoal, 2, "", 0, Status::INVALID_REQUEST, nan},
       {"goal in a closed pocket", kRoomStart, pose(8.0, 15.0, 0, "map"), 20, "", 0,
        Status::NO_PATH_FOUND},
       {"no time for A* through the maze", kMazeStart, kMazeGoal, 1e-4, "astar", 0,
@@ -396,7 +480,7 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
        5, "", 0, Status::SUCCESS},
   };
   for (const auto& c : cases) {
-    const auto res = plan(c.start, c.goal, c.budget, c.algorithm, c.w1);
+    const auto res = plan(c.start, c.goal, c.budget, c.algorithm, c.w1, 0, c.goal_tolerance);
     EXPECT_EQ(res.status, c.expected) << c.what << ": " << res.message;
     EXPECT_FALSE(res.message.empty()) << c.what;
     if (c.expected != Status::SUCCESS) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -189,9 +190,10 @@ struct PlanResult {
   double heuristic_seconds = 0.0;
   HeuristicSource heuristic_source = HeuristicSource::kCached;  ///< (added after the API freeze)
   /// The pose the search plans to: the centre of the goal's cell with the goal's heading bin
-  /// or, when a goal tolerance replaced an obstructed goal, that substitute (set whenever a
-  /// search is run; added after the API freeze).
-  Pose2D planned_goal;
+  /// or, when a goal tolerance replaced an obstructed goal, that substitute. Set once it is
+  /// known: always when error is kNone, unless a stop came while the substitute was chosen
+  /// (added after the API freeze).
+  std::optional<Pose2D> planned_goal;
   /// True when the goal was in collision and a goal tolerance replaced it by planned_goal
   /// (message then says so); the solutions' bounds are relative to the optimal cost to
   /// planned_goal.

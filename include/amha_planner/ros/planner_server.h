@@ -64,6 +64,7 @@ class PlannerServer {
     double time_budget = 0.0;
     std::string algorithm;
     double w1 = 0.0, w2 = 0.0;
+    double goal_tolerance = 0.0;  ///< metres (nav_msgs/GetPlan's tolerance)
   };
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
