@@ -56,6 +56,12 @@ add_test(NAME amha_plan_refuses_both_turn_flags
          COMMAND bash -c "out=$(\"$0\" plan --map x.pgm --start 0,0,0 --goal 1,1,0 --turn-term --no-turn-term 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 2 ] && grep -q excludes <<<\"$out\""
                  $<TARGET_FILE:amha>)
 
+# A goal on a wall of the bundled map: refused (exit 6) without a goal tolerance, replaced by a
+# reachable free pose with one.
+add_test(NAME amha_plan_goal_tolerance
+         COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 24.45,6.45,1.57 --algorithm wastar --time-limit 5); \"$0\" \"\${args[@]}\" >/dev/null 2>&1; [ $? -eq 6 ] || exit 1; out=$(\"$0\" \"\${args[@]}\" --goal-tolerance 0.6 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'planning to the nearest reachable collision-free pose instead' <<<\"$out\""
+                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+
 amha_add_gtest(amha_lattice_tests
   SOURCES
     test/lattice/test_support.cpp

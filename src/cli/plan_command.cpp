@@ -25,11 +25,14 @@ int planMain(int argc, char** argv) {
   LatticeOptions lo;
   lo.addTo(app);
   std::string start_text, goal_text, algorithm_name = "amha", json_path, image_path;
-  double time_limit = 10.0;
+  double time_limit = 10.0, goal_tolerance = 0.0;
   double w1 = NAN, w2 = NAN, dw1 = NAN, dw2 = NAN, eps = NAN;
   QueueSchedule schedule = QueueSchedule::kRoundRobin;
   app.add_option("--start", start_text, "start pose x,y,theta (m, m, rad; .cfg maps: the file's start)");
   app.add_option("--goal", goal_text, "goal pose x,y,theta (.cfg maps: the file's end)");
+  app.add_option("--goal-tolerance", goal_tolerance,
+                 "metres: if the goal is in collision, plan to the nearest collision-free pose within this "
+                 "distance that the start can reach (default 0: the exact goal)");
   app.add_option("--algorithm", algorithm_name, "amha | mha | ara | ana | wastar | astar (default amha)");
   app.add_option("--time-limit", time_limit, "seconds, heuristic computation included (default 10)");
   app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar)");
@@ -66,6 +69,10 @@ int planMain(int argc, char** argv) {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {
     std::cerr << "amha plan: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  if (!(goal_tolerance >= 0.0) || !std::isfinite(goal_tolerance)) {
+    std::cerr << "amha plan: --goal-tolerance must be finite and >= 0\n";
     return kExitUsage;
   }
   if (!(time_limit > 0.0)) {
@@ -114,17 +121,19 @@ int planMain(int argc, char** argv) {
                 q.certified_bound, static_cast<unsigned long long>(q.expansions), s.poses.size());
     std::fflush(stdout);
   };
-  const lattice::PlanResult r = planner->plan(start, goal, pc, limits, print);
+  const lattice::PlanResult r = planner->plan(start, goal, goal_tolerance, pc, limits, print);
   if (r.error != lattice::QueryError::kNone) {
     std::cerr << "amha plan: " << r.message << "\n";
     const bool is_start = r.error == lattice::QueryError::kStartNotFinite || r.error == lattice::QueryError::kStartOutOfMap ||
                           r.error == lattice::QueryError::kStartInCollision;
+    if (r.error == lattice::QueryError::kGoalUnreachable) return kExitNoSolution;
     return is_start ? kExitBadStart : kExitBadGoal;
   }
+  if (r.goal_substituted) std::printf("%s\n", r.message.c_str());
   std::printf("status %s: %zu solutions, %llu expansions, %zu states, %.1f MB, heuristics %.4f s, total %.4f s\n",
               statusName(r.search.status), r.solutions.size(), static_cast<unsigned long long>(r.search.expansions),
               r.search.peak_states, r.search.peak_memory_bytes / 1e6, r.heuristic_seconds,
-              r.heuristic_seconds + r.search.elapsed_s);
+              r.goal_seconds + r.heuristic_seconds + r.search.elapsed_s);
 
   try {
     if (!json_path.empty()) {
@@ -137,6 +146,9 @@ int planMain(int argc, char** argv) {
       run["heuristic_seconds"] = r.heuristic_seconds;
       nlohmann::json extra = {{"start", {start.x, start.y, start.theta}}, {"goal", {goal.x, goal.y, goal.theta}},
                               {"cost_units_per_metre", lattice::kCostUnitsPerMetre}};
+      if (r.planned_goal) extra["planned_goal"] = {r.planned_goal->x, r.planned_goal->y, r.planned_goal->theta};
+      extra["goal_tolerance"] = goal_tolerance;
+      extra["goal_substituted"] = r.goal_substituted;
       writeRunsJson(json_path, nlohmann::json::array({run}), extra);
     }
     if (!image_path.empty()) {
