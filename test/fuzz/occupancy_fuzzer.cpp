@@ -5,11 +5,13 @@
 // fuzzed algorithm; every solution must pass the lattice tests' independent path validator,
 // start and end at the query's states, and have sane, non-increasing costs and bounds. The
 // LatticePlanner facade must give the same costs, with poses from the start to the goal, and
-// refuse arbitrary (non-finite, out-of-map) poses cleanly.
+// refuse arbitrary (non-finite, out-of-map) poses cleanly, with and without a goal tolerance
+// (a substitute goal must be collision-free, within the tolerance, and where the paths end).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -76,11 +78,39 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   limits.max_expansions = 1 + in.u16() % 4000;
 
   // Arbitrary poses through the facade: refused cleanly or planned.
+  const Pose2D a{in.small(map->width * res), in.small(map->height * res), in.small(8.0)};
+  const Pose2D b{in.small(map->width * res), in.small(map->height * res), in.small(8.0)};
   {
-    const Pose2D a{in.small(map->width * res), in.small(map->height * res), in.small(8.0)};
-    const Pose2D b{in.small(map->width * res), in.small(map->height * res), in.small(8.0)};
     const PlanResult r = planner->plan(a, b, pc, limits);
     if (r.error != QueryError::kNone && (r.message.empty() || !r.solutions.empty())) finding("query error without a message or with solutions");
+  }
+  // The same with a goal tolerance: a bad one is refused; a substitute goal is collision-free,
+  // within the tolerance, and where every path ends.
+  {
+    const double tol = std::abs(in.small(res * 4));
+    PlanResult r;
+    try {
+      r = planner->plan(a, b, tol, pc, limits);
+      if (!std::isfinite(tol)) finding("a non-finite goal tolerance was accepted");
+    } catch (const std::invalid_argument&) {
+      if (std::isfinite(tol)) finding("a finite goal tolerance was refused");
+      r.error = QueryError::kGoalNotFinite;
+      r.message = "refused";
+    }
+    if (r.error != QueryError::kNone && (r.message.empty() || !r.solutions.empty())) finding("tolerant query error without a message or with solutions");
+    if (r.goal_substituted) {
+      int x = 0, y = 0, h = 0;
+      if (!r.planned_goal || !g.poseToState(*r.planned_goal, &x, &y, &h) || !g.stateValid(x, y, h)) {
+        finding("substitute goal missing or in collision");
+      } else if (std::hypot(r.planned_goal->x - b.x, r.planned_goal->y - b.y) > tol + 1e-9) {
+        finding("substitute goal beyond the tolerance");
+      }
+      for (const LatticeSolution& sol : r.solutions) {
+        if (std::hypot(sol.poses.back().x - r.planned_goal->x, sol.poses.back().y - r.planned_goal->y) > 1e-6 * res + 1e-9) {
+          finding("a path does not end at the substitute goal");
+        }
+      }
+    }
   }
   if (!g.stateValid(s.x, s.y, s.heading) || !g.stateValid(t.x, t.y, t.heading)) return;
 

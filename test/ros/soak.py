@@ -22,6 +22,7 @@ import re
 import shutil
 import subprocess
 import random
+import struct
 import sys
 import threading
 import time
@@ -232,7 +233,8 @@ class Soak:
         self.rng = random.Random(args.seed)
         self.lock = threading.Lock()
         self.stats = {"requests": 0, "by_interface": {}, "by_kind": {}, "answers": {}, "answers_by_kind": {},
-                      "paths_checked": 0, "solutions_checked": 0, "cancels_sent": 0, "cancel_latency_running_s": [],
+                      "paths_checked": 0, "solutions_checked": 0, "goals_substituted": 0, "cancels_sent": 0,
+                      "cancel_latency_running_s": [],
                       "map_updates": {"valid": 0, "malformed": {}}, "updates_sent": {}, "failures": [], "rss_kb": [],
                       "checkpoints": []}
         self.maps = []          # (time published, Grid) of every valid map, in order
@@ -303,8 +305,8 @@ class Soak:
         kind = rng.choices(
             ["valid", "valid_robot_start", "valid_odom_goal", "random_pose", "far_out", "nan_position",
              "nan_quaternion", "zero_quaternion", "unnormalised_quaternion", "unknown_frame", "bad_algorithm",
-             "bad_weight", "bad_budget"],
-            weights=[30, 6, 6, 12, 4, 3, 3, 3, 3, 3, 3, 3, 3])[0]
+             "bad_weight", "bad_budget", "tolerant_goal", "bad_tolerance"],
+            weights=[30, 6, 6, 12, 4, 3, 3, 3, 3, 3, 3, 3, 3, 10, 3])[0]
         a = grid.random_free_pose(rng) or (0.0, 0.0, 0.0)
         b = grid.random_free_pose(rng) or (0.0, 0.0, 0.0)
         start = pose_stamped("map", a[0], a[1], yaw_quaternion(a[2]))
@@ -312,7 +314,8 @@ class Soak:
         start_map, goal_map = a, b
         req = {"start": start, "goal": goal, "time_budget": rng.choice([0.0, 0.05, 0.2, 0.5, 1.0, 2.0]),
                "algorithm": rng.choice(["", "", "amha", "mha", "ara", "ana", "wastar", "astar"]),
-               "w1": rng.choice([0.0, 0.0, 1.0, 1.5, 3.0, 10.0]), "w2": rng.choice([0.0, 0.0, 1.0, 2.0, 5.0])}
+               "w1": rng.choice([0.0, 0.0, 1.0, 1.5, 3.0, 10.0]), "w2": rng.choice([0.0, 0.0, 1.0, 2.0, 5.0]),
+               "goal_tolerance": 0.0}
         expected = None  # any clean status
         if kind == "valid_robot_start":
             start.header.frame_id = ""
@@ -367,12 +370,24 @@ class Soak:
         elif kind == "bad_budget":
             req["time_budget"] = rng.choice([-1.0, float("nan"), float("inf"), -1e300])
             expected = {S.INVALID_REQUEST}
+        elif kind == "tolerant_goal":
+            # A goal anywhere in the map, often in or near an obstacle, with a goal tolerance:
+            # a path must end within the tolerance of it (check_path).
+            x, y = grid.ox + rng.uniform(0, grid.w * grid.res), grid.oy + rng.uniform(0, grid.h * grid.res)
+            t = rng.uniform(-math.pi, math.pi)
+            req["goal"] = pose_stamped("map", x, y, yaw_quaternion(t))
+            goal_map = (x, y, t)
+            req["goal_tolerance"] = rng.choice([0.05, 0.1, 0.3, 0.5, 1.0, 3.0])
+        elif kind == "bad_tolerance":
+            req["goal_tolerance"] = rng.choice([-0.5, -1e-9, float("nan"), float("inf"), -float("inf")])
+            expected = {S.INVALID_REQUEST}
         if expected is not None:
             expected = expected | {S.BUSY}
         return kind, req, expected, start_map, goal_map
 
-    def check_path(self, where, path, start_map, goal_map, grids):
-        """Checks one path (nav_msgs/Path); returns the reasons it is wrong ([] = valid)."""
+    def check_path(self, where, path, start_map, goal_map, grids, goal_tolerance=0.0):
+        """Checks one path (nav_msgs/Path); returns the reasons it is wrong ([] = valid). With a
+        goal tolerance it may end anywhere within the tolerance of the goal, at any heading."""
         poses = path.poses
         if path.header.frame_id != "map":
             return ["path frame '%s'" % path.header.frame_id]
@@ -386,11 +401,12 @@ class Soak:
             tol = g.res * 0.75 + 1e-6
             if math.hypot(xs[0][0] - start_map[0], xs[0][1] - start_map[1]) > tol:
                 err.append("starts %.3f m from the start" % math.hypot(xs[0][0] - start_map[0], xs[0][1] - start_map[1]))
-            if math.hypot(xs[-1][0] - goal_map[0], xs[-1][1] - goal_map[1]) > tol:
+            if math.hypot(xs[-1][0] - goal_map[0], xs[-1][1] - goal_map[1]) > max(tol, goal_tolerance + 1e-6):
                 err.append("ends %.3f m from the goal" % math.hypot(xs[-1][0] - goal_map[0], xs[-1][1] - goal_map[1]))
             # Generated headings are the directions of small lattice vectors: the widest gap is
             # atan(1/2) (26.6 degrees), so the nearest heading is within half of it.
-            if angle_diff(xs[0][2], start_map[2]) > HALF_BIN or angle_diff(xs[-1][2], goal_map[2]) > HALF_BIN:
+            if angle_diff(xs[0][2], start_map[2]) > HALF_BIN or (
+                    goal_tolerance == 0.0 and angle_diff(xs[-1][2], goal_map[2]) > HALF_BIN):
                 err.append("start or end heading off by more than half a heading bin")
             for k in range(1, len(xs)):
                 if math.hypot(xs[k][0] - xs[k - 1][0], xs[k][1] - xs[k - 1][1]) > 1.5 * g.res + 1e-6:
@@ -429,7 +445,17 @@ class Soak:
         if not has_path:
             return
         grids = self.candidate_maps(t_sent, t_done)
-        errs = self.check_path(where, res.path, start_map, goal_map, grids)
+        tolerance = 0.0 if req is None else req["goal_tolerance"]
+        if res.goal_substituted:
+            # The substitute is where the path ends, within the tolerance of the goal.
+            end, pg = res.path.poses[-1].pose.position, res.planned_goal
+            if tolerance <= 0.0 or "instead" not in res.message or pg.header.frame_id != "map" or \
+                    math.hypot(pg.pose.position.x - end.x, pg.pose.position.y - end.y) > 1e-6:
+                self.fail("%s: goal substituted without a tolerance, a message or a planned goal at the path's end: "
+                          "%s" % (where, res.message))
+            with self.lock:
+                self.stats["goals_substituted"] += 1
+        errs = self.check_path(where, res.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0)
         with self.lock:
             self.stats["paths_checked"] += 1
         if errs:
@@ -456,7 +482,7 @@ class Soak:
             if s.same_path_as_previous != (len(s.path.poses) == 0) and k > 0:
                 self.fail("%s: solution %d: same_path_as_previous does not match its empty path" % (where, k))
             if s.path.poses:
-                e = self.check_path(where, s.path, start_map, goal_map, grids)
+                e = self.check_path(where, s.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0)
                 if e:
                     self.fail("%s: solution %d invalid: %s" % (where, k, " | ".join(e)))
             prev = s
@@ -466,13 +492,15 @@ class Soak:
         if abs(res.cost - last.cost) > 1e-9 or abs(res.bound - last.bound) > 1e-9 * max(1.0, last.bound):
             self.fail("%s: response cost/bound differ from the last solution's" % where)
         straight = math.hypot(goal_map[0] - start_map[0], goal_map[1] - start_map[1])
+        if res.goal_substituted:
+            straight -= tolerance
         if res.cost < straight - 2 * max(g.res for g in grids) - 1e-6:
             self.fail("%s: cost %.3f below the straight-line distance %.3f" % (where, res.cost, straight))
 
     def call_service(self, rng, proxies):
         kind, r, expected, sm, gm = self.make_request(rng)
         req = PlanRequest(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
-                          w1=r["w1"], w2=r["w2"])
+                          w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"])
         t_sent = time.time()
         res = proxies["plan"](req)
         self.check_answer("plan", kind, expected, res, sm, gm, t_sent, time.time(), False, r)
@@ -483,12 +511,17 @@ class Soak:
         if kind in ("bad_algorithm", "bad_weight", "bad_budget"):
             expected = None  # GetPlan has no algorithm, weights or budget: a valid request
         t_sent = time.time()
-        res = proxies["make_plan"](GetPlanRequest(start=r["start"], goal=r["goal"], tolerance=0.0))
+        # GetPlan's tolerance is a float32: the request's, rounded the way the server reads it.
+        tolerance = struct.unpack("f", struct.pack("f", r["goal_tolerance"]))[0]
+        res = proxies["make_plan"](GetPlanRequest(start=r["start"], goal=r["goal"], tolerance=tolerance))
         self.count("answers", "make_plan_" + ("path" if res.plan.poses else "empty"))
         if res.plan.poses:
             if expected is not None and S.SUCCESS not in expected:
                 self.fail("make_plan %s: a path for a request that must fail" % kind)
-            errs = self.check_path("make_plan", res.plan, sm, gm, self.candidate_maps(t_sent, time.time()))
+            # Without the response's goal_substituted, a tolerant request's path may end
+            # anywhere within the tolerance.
+            errs = self.check_path("make_plan", res.plan, sm, gm, self.candidate_maps(t_sent, time.time()),
+                                   tolerance if tolerance > 0.0 else 0.0)
             with self.lock:
                 self.stats["paths_checked"] += 1
             if errs:
@@ -498,7 +531,7 @@ class Soak:
     def call_action(self, rng, client):
         kind, r, expected, sm, gm = self.make_request(rng)
         goal = PlanAnytimeGoal(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
-                               w1=r["w1"], w2=r["w2"])
+                               w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"])
         feedback = []
         t_sent = time.time()
         client.send_goal(goal, feedback_cb=lambda f: feedback.append(time.time()))

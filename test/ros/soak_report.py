@@ -42,11 +42,14 @@ def main():
     w("## Result\n")
     w("**%s**: %d requests in %.0f s from %s, %d failures; the node was %s at the end. "
       "%d paths (%d solutions, counting every improved path of an anytime answer) were replayed "
-      "against the maps in use and passed.\n" % (
+      "against the maps in use and passed%s.\n" % (
           "PASSED" if ok else "FAILED", d["requests"], d["seconds"],
           ", ".join("%s %d" % (k, v) for k, v in sorted(d["by_interface"].items())),
           d["failure_count"], "alive" if d["node_alive_at_end"] else "DEAD",
-          d["paths_checked"], d["solutions_checked"]))
+          d["paths_checked"], d["solutions_checked"],
+          "" if "goals_substituted" not in d else
+          " (%d of them to a substitute for a goal in collision, within the request's goal tolerance)"
+          % d["goals_substituted"]))
     if d["failures"]:
         w("Failures:\n")
         for f in d["failures"][:50]:
