@@ -129,7 +129,7 @@ int planMain(int argc, char** argv) {
     if (r.error == lattice::QueryError::kGoalUnreachable) return kExitNoSolution;
     return is_start ? kExitBadStart : kExitBadGoal;
   }
-  if (r.goal_substituted) std::printf("%s\n", r.message.c_str());
+  if (r.goal_substituted) std::printf("%s\ngoal choice %.4f s\n", r.message.c_str(), r.goal_seconds);
   std::printf("status %s: %zu solutions, %llu expansions, %zu states, %.1f MB, heuristics %.4f s, total %.4f s\n",
               statusName(r.search.status), r.solutions.size(), static_cast<unsigned long long>(r.search.expansions),
               r.search.peak_states, r.search.peak_memory_bytes / 1e6, r.heuristic_seconds,

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <tuple>
 
 #include "amha_planner/lattice/heuristic_grids.h"
@@ -12,33 +13,92 @@ namespace amha {
 namespace lattice {
 
 CentreReachability::CentreReachability(const GridMap& map, int start_x, int start_y)
-    : map_(map), seen_(static_cast<std::size_t>(map.width) * map.height, 0) {
-  if (map.at(start_x, start_y) < kInscribedCost) {
-    const std::int32_t s = start_y * map.width + start_x;
-    seen_[s] = 1;
-    queue_.push_back(s);
+    : map_(map),
+      start_(start_y * map.width + start_x),
+      from_start_((static_cast<std::size_t>(map.width) * map.height + 63) / 64, 0),
+      from_cell_(from_start_.size(), 0),
+      unreachable_(from_start_.size(), 0) {
+  start_side_.target = start_;
+  if (map.cost[start_] < kInscribedCost) {
+    set(from_start_, start_);
+    push(start_side_, start_);
   }
 }
 
-CentreReachability::Answer CentreReachability::reaches(int x, int y, const GridStop* stop) {
+std::int64_t CentreReachability::distance2(std::int32_t a, std::int32_t b) const {
+  const std::int64_t dx = a % map_.width - b % map_.width, dy = a / map_.width - b / map_.width;
+  return dx * dx + dy * dy;
+}
+
+void CentreReachability::push(Side& side, std::int32_t c) {
+  side.heap.emplace_back(distance2(c, side.target), c);
+  std::push_heap(side.heap.begin(), side.heap.end(), std::greater<>());
+}
+
+void CentreReachability::retarget(Side& side, std::int32_t target) {
+  if (side.target == target) return;
+  side.target = target;
+  for (auto& e : side.heap) e.first = distance2(e.second, target);
+  std::make_heap(side.heap.begin(), side.heap.end(), std::greater<>());
+}
+
+bool CentreReachability::expand(Side& side, std::vector<std::uint64_t>& mine,
+                                const std::vector<std::uint64_t>& other, std::vector<std::int32_t>* touched) {
+  std::pop_heap(side.heap.begin(), side.heap.end(), std::greater<>());
+  const std::int32_t c = side.heap.back().second;
+  side.heap.pop_back();
   const int w = map_.width, h = map_.height;
-  const std::size_t target = static_cast<std::size_t>(y) * w + x;
-  while (!seen_[target] && head_ < queue_.size()) {
-    if ((head_ & 4095u) == 0 && stop != nullptr && stop->requested()) return Answer::kStopped;
-    const std::int32_t c = queue_[head_++];
-    const int cx = c % w, cy = c / w;
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = cx + dx, ny = cy + dy;
-        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-        const std::int32_t n = ny * w + nx;
-        if (seen_[n] || map_.cost[n] >= kInscribedCost) continue;
-        seen_[n] = 1;
-        queue_.push_back(n);
-      }
+  const int cx = c % w, cy = c / w;
+  bool met = false;
+  // Every neighbour is taken even after a meeting: the start's side is kept for later
+  // questions, and a cell popped without all its neighbours would leave a hole in it.
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = cx + dx, ny = cy + dy;
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+      const std::int32_t n = ny * w + nx;
+      if (test(mine, n) || map_.cost[n] >= kInscribedCost) continue;
+      met = met || test(other, n);
+      set(mine, n);
+      if (touched != nullptr) touched->push_back(n);
+      push(side, n);
     }
   }
-  return seen_[target] ? Answer::kYes : Answer::kNo;
+  return met;
+}
+
+CentreReachability::Answer CentreReachability::reaches(int x, int y, const GridStop* stop) {
+  const std::int32_t target = y * map_.width + x;
+  if (test(from_start_, target)) return Answer::kYes;
+  if (test(unreachable_, target) || map_.cost[target] >= kInscribedCost) return Answer::kNo;
+  if (start_side_.heap.empty()) return Answer::kNo;  // the start's whole component is known
+  retarget(start_side_, target);
+  Side cell_side;
+  cell_side.target = start_;
+  std::vector<std::int32_t> touched{target};
+  set(from_cell_, target);
+  push(cell_side, target);
+  Answer answer = Answer::kNo;
+  for (std::size_t step = 0;; ++step) {
+    if ((step & 4095u) == 0 && stop != nullptr && stop->requested()) {
+      answer = Answer::kStopped;
+      break;
+    }
+    // The start's side runs out: its component is complete and lacks the cell. The cell's side
+    // runs out: the cell's component is complete and lacks the start.
+    if (start_side_.heap.empty() || cell_side.heap.empty()) break;
+    if (expand(start_side_, from_start_, from_cell_, nullptr) || expand(cell_side, from_cell_, from_start_, &touched)) {
+      answer = Answer::kYes;
+      break;
+    }
+  }
+  // A side that ran out without meeting the start's is a whole component without the start.
+  const bool cell_side_unreachable = answer == Answer::kNo && cell_side.heap.empty();
+  for (const std::int32_t c : touched) {
+    from_cell_[c >> 6] &= ~(std::uint64_t{1} << (c & 63));
+    if (cell_side_unreachable) set(unreachable_, c);
+  }
+  return answer;
 }
 
 namespace {

@@ -99,6 +99,32 @@ std::shared_ptr<GridMap> clutteredMap(unsigned seed, int size) {
   return m;
 }
 
+TEST(GoalToleranceTest, ReachabilityEqualsAFloodFillOverManyQuestions) {
+  // One object asked about every cell in random order: what it keeps between questions (the
+  // start's side, the cells refused) must never change an answer.
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const auto map = clutteredMap(seed, 40);
+    std::mt19937 rng(seed);
+    int largest = 0;
+    for (int start = 0; start < 6; ++start) {
+      const int sx = static_cast<int>(rng() % 40), sy = static_cast<int>(rng() % 40);
+      const std::vector<char> want = floodFill(*map, sx, sy);
+      std::vector<int> cells(map->cost.size());
+      for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = static_cast<int>(i);
+      std::shuffle(cells.begin(), cells.end(), rng);
+      CentreReachability reach(*map, sx, sy);
+      int yes = 0;
+      for (const int c : cells) {
+        const auto a = reach.reaches(c % 40, c / 40, nullptr);
+        ASSERT_EQ(a == CentreReachability::Answer::kYes, want[c] != 0) << "seed " << seed << " cell " << c;
+        yes += a == CentreReachability::Answer::kYes;
+      }
+      largest = std::max(largest, yes);
+    }
+    EXPECT_GT(largest, 100) << "seed " << seed;  // a real part of the map was asked about
+  }
+}
+
 TEST(GoalToleranceTest, ChoiceEqualsBruteForce) {
   int found = 0, none_reachable = 0, no_free = 0;
   for (unsigned seed = 1; seed <= 12; ++seed) {

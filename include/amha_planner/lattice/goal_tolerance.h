@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "amha_planner/lattice/lattice_planner.h"
@@ -19,8 +20,14 @@ struct GridStop;
 /// cells (LatticeGraph::stateValid, edgeCost), and a centre line is continuous, so a cell
 /// outside the component is out of reach of every path; the converse does not hold (the robot
 /// may still be too wide or unable to turn), which only makes the test weaker, never wrong.
-/// The breadth-first search runs on demand and resumes where it stopped, so any number of
-/// questions cost at most one pass over the component.
+///
+/// Each question runs two greedy searches at once, one from the start towards the cell and one
+/// from the cell towards the start, each expanding the frontier cell nearest its target: they
+/// meet (yes) or one runs out of cells (no). A cell in a small closed pocket is thus refused
+/// after exploring the pocket, not the start's whole component, and a reachable one is usually
+/// found along a corridor rather than a disc. What a search learns is kept: the start's side
+/// goes on from where it stopped for the next question, and the cells of a refused cell's side
+/// are remembered as unreachable.
 class CentreReachability {
  public:
   enum class Answer { kYes, kNo, kStopped };
@@ -30,10 +37,27 @@ class CentreReachability {
   Answer reaches(int x, int y, const GridStop* stop);
 
  private:
+  /// A greedy search over the component: a frontier ordered by squared distance to a target.
+  struct Side {
+    std::vector<std::pair<std::int64_t, std::int32_t>> heap;  // (distance^2, cell), a min-heap
+    std::int32_t target = 0;
+  };
+  static bool test(const std::vector<std::uint64_t>& bits, std::int32_t c) { return (bits[c >> 6] >> (c & 63)) & 1u; }
+  static void set(std::vector<std::uint64_t>& bits, std::int32_t c) { bits[c >> 6] |= std::uint64_t{1} << (c & 63); }
+  std::int64_t distance2(std::int32_t a, std::int32_t b) const;
+  void push(Side& side, std::int32_t c);
+  void retarget(Side& side, std::int32_t target);
+  /// Expands side's nearest frontier cell, marking its new neighbours in `mine`; true if one of
+  /// them is in `other` (the two searches met).
+  bool expand(Side& side, std::vector<std::uint64_t>& mine, const std::vector<std::uint64_t>& other,
+              std::vector<std::int32_t>* touched);
+
   const GridMap& map_;
-  std::vector<std::uint8_t> seen_;    // per cell: queued at some point
-  std::vector<std::int32_t> queue_;   // cell indices in breadth-first order (maps < 2^31 cells)
-  std::size_t head_ = 0;              // queue_[head_..] are still to be expanded
+  std::int32_t start_ = 0;
+  std::vector<std::uint64_t> from_start_;   // cells the start's side has reached (a bit each)
+  std::vector<std::uint64_t> from_cell_;    // cells the current question's side has reached
+  std::vector<std::uint64_t> unreachable_;  // cells of the sides that ran out without meeting
+  Side start_side_;
 };
 
 /// What nearestReachableGoal found.
