@@ -491,7 +491,9 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       solutions_pub_.publish(m);
       if (!m.same_path_as_previous) {
         path_pub_.publish(m.path);
-        markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, g, frame, stamp,
+        // With a goal tolerance the path may end at a substitute: mark where it really ends.
+        const lat::Pose2D& goal_mark = r.goal_tolerance > 0.0 ? solution.poses.back() : g;
+        markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, goal_mark, frame, stamp,
                                               params_.marker_spacing));
       }
       if (sink) sink(m);
