@@ -330,6 +330,22 @@ TEST(PlannerNodelet, MakePlanWorks) {
   EXPECT_TRUE(srv.response.plan.poses.empty());
 }
 
+// Sends one goal to ~plan_anytime and waits for its end (10 s at most; result null if none).
+struct ActionOutcome {
+  actionlib::SimpleClientGoalState state{actionlib::SimpleClientGoalState::LOST};
+  PlanAnytimeResultConstPtr result;
+};
+ActionOutcome runAction(const PlanAnytimeGoal& goal) {
+  Client client("/planner/plan_anytime", true);
+  ActionOutcome out;
+  if (!client.waitForServer(ros::Duration(5))) return out;
+  client.sendGoal(goal);
+  if (!client.waitForResult(ros::Duration(10))) return out;
+  out.state = client.getState();
+  out.result = client.getResult();
+  return out;
+}
+
 Plan::Response planWithTolerance(const geometry_msgs::PoseStamped& goal, double tolerance) {
   Plan srv;
   srv.request.start = kRoomStart;
@@ -395,18 +411,16 @@ TEST(PlannerNodelet, GoalToleranceReplacesAnObstructedGoalByAReachableOne) {
   EXPECT_TRUE(srv.response.plan.poses.empty());
 
   // The action too.
-  Client client("/planner/plan_anytime", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
   PlanAnytimeGoal goal;
   goal.start = kRoomStart;
   goal.goal = in_block;
   goal.goal_tolerance = 1.0;
-  client.sendGoal(goal);
-  ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
-  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED);
-  EXPECT_TRUE(client.getResult()->goal_substituted);
-  EXPECT_EQ(client.getResult()->planned_goal.header.frame_id, "map");
-  expectValidPath(client.getResult()->path, kRoomStart, client.getResult()->planned_goal, testMap());
+  const ActionOutcome out = runAction(goal);
+  ASSERT_TRUE(out.result);
+  EXPECT_EQ(out.state, actionlib::SimpleClientGoalState::SUCCEEDED);
+  EXPECT_TRUE(out.result->goal_substituted);
+  EXPECT_EQ(out.result->planned_goal.header.frame_id, "map");
+  expectValidPath(out.result->path, kRoomStart, out.result->planned_goal, testMap());
 }
 
 TEST(PlannerNodelet, StartFromTfAndGoalInAnotherFrame) {
@@ -488,15 +502,13 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
     }
   }
   // The action reports the same statuses (aborted).
-  Client client("/planner/plan_anytime", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
   PlanAnytimeGoal goal;
   goal.start = kRoomStart;
   goal.goal = pose(2.5, 4.0, 0, "map");
-  client.sendGoal(goal);
-  ASSERT_TRUE(client.waitForResult(ros::Duration(10)));
-  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);
-  EXPECT_EQ(client.getResult()->status, PlanAnytimeResult::INVALID_GOAL);
+  const ActionOutcome out = runAction(goal);
+  ASSERT_TRUE(out.result);
+  EXPECT_EQ(out.state, actionlib::SimpleClientGoalState::ABORTED);
+  EXPECT_EQ(out.result->status, PlanAnytimeResult::INVALID_GOAL);
   // And the node still plans.
   const auto res = plan(kRoomStart, kRoomGoal, 5.0);
   EXPECT_EQ(res.status, Status::SUCCESS) << res.message;
