@@ -33,6 +33,9 @@ int planMain(int argc, char** argv) {
   app.add_option("--goal-tolerance", goal_tolerance,
                  "metres: if the goal is in collision, plan to the nearest collision-free pose within this "
                  "distance that the start can reach (default 0: the exact goal)");
+  bool any_goal_heading = false;
+  app.add_flag("--any-goal-heading", any_goal_heading,
+               "end at the goal's position with whichever heading is cheapest (its own is ignored)");
   app.add_option("--algorithm", algorithm_name, "amha | mha | ara | ana | wastar | astar (default amha)");
   app.add_option("--time-limit", time_limit, "seconds, heuristic computation included (default 10)");
   app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar)");
@@ -121,7 +124,10 @@ int planMain(int argc, char** argv) {
                 q.certified_bound, static_cast<unsigned long long>(q.expansions), s.poses.size());
     std::fflush(stdout);
   };
-  const lattice::PlanResult r = planner->plan(start, goal, goal_tolerance, pc, limits, print);
+  lattice::GoalOptions goal_options;
+  goal_options.tolerance = goal_tolerance;
+  goal_options.any_heading = any_goal_heading;
+  const lattice::PlanResult r = planner->plan(start, goal, goal_options, pc, limits, print);
   if (r.error != lattice::QueryError::kNone) {
     std::cerr << "amha plan: " << r.message << "\n";
     const bool is_start = r.error == lattice::QueryError::kStartNotFinite || r.error == lattice::QueryError::kStartOutOfMap ||
@@ -149,6 +155,7 @@ int planMain(int argc, char** argv) {
       if (r.planned_goal) extra["planned_goal"] = {r.planned_goal->x, r.planned_goal->y, r.planned_goal->theta};
       extra["goal_tolerance"] = goal_tolerance;
       extra["goal_substituted"] = r.goal_substituted;
+      extra["any_goal_heading"] = any_goal_heading;
       writeRunsJson(json_path, nlohmann::json::array({run}), extra);
     }
     if (!image_path.empty()) {

@@ -125,13 +125,20 @@ bool CoarseLattice::propagate(const std::vector<std::vector<AbstractEdge>>& edge
   return true;
 }
 
+std::pair<std::size_t, std::size_t> CoarseLattice::goalNodes(int gx, int gy, int gh) const {
+  if (gh == kAnyHeading) return {index(gx, gy, 0), static_cast<std::size_t>(headings_)};
+  return {index(gx, gy, gh), 1};
+}
+
 std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const GridStop* stop) const {
   std::vector<std::uint32_t> dist(static_cast<std::size_t>(pw_) * ph_ * headings_, kUnreachable);
-  const std::size_t goal = index(gx, gy, gh);
+  const auto [goal, count] = goalNodes(gx, gy, gh);
   if (block_cost_[goal / headings_] == 255) return dist;
   detail::RadixHeap heap;
-  dist[goal] = 0;
-  heap.push(0, static_cast<std::uint32_t>(goal));
+  for (std::size_t v = goal; v < goal + count; ++v) {
+    dist[v] = 0;
+    heap.push(0, static_cast<std::uint32_t>(v));
+  }
   if (!propagate(forward ? forward_ : reverse_, dist, heap, stop)) return {};
   return dist;
 }
@@ -149,7 +156,8 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   const std::vector<std::vector<AbstractEdge>>& edges = forward ? forward_ : reverse_;
   const std::vector<std::vector<AbstractEdge>>& into = forward ? reverse_ : forward_;
   std::uint32_t* dist = old.data();
-  const std::uint32_t goal = static_cast<std::uint32_t>(index(gx, gy, gh));
+  const std::pair<std::size_t, std::size_t> goals = goalNodes(gx, gy, gh);
+  const std::uint32_t goal = static_cast<std::uint32_t>(goals.first), goal_count = static_cast<std::uint32_t>(goals.second);
   // Every node of a block within an edge's reach of a changed cell's block: its edges, in and
   // out, may cost something else now (padded block coordinates).
   std::vector<std::array<int, 4>> near;
@@ -173,7 +181,7 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   auto holds = [&](std::uint32_t u) {
     const std::size_t ub = u / headings_;
     if (block_cost_[ub] == 255) return false;
-    if (u == goal) return true;
+    if (u - goal < goal_count) return true;  // (unsigned: false below goal)
     for (const AbstractEdge& p : into[u % headings_]) {
       const std::uint32_t v = static_cast<std::uint32_t>(u + p.node_offset);
       if (dist[v] == kUnreachable) continue;
@@ -189,7 +197,7 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   };
   auto propagateFrom = [&](detail::RadixHeap& heap) { return propagate(edges, old, heap, stop); };
   detail::RadixHeap heap;
-  if (!detail::repairDistances(dist, goal, block_cost_[goal / headings_] != 255, forNear, holds, along(edges),
+  if (!detail::repairDistances(dist, goal, goal_count, block_cost_[goal / headings_] != 255, forNear, holds, along(edges),
                                along(into), propagateFrom, stop, heap)) {
     return {};
   }

@@ -1,4 +1,5 @@
-// Repair of single-goal shortest distances after some edge costs changed (a dynamic
+// Repair of shortest distances to a goal (or to a few goal nodes, numbered consecutively) after
+// some edge costs changed (a dynamic
 // shortest-path update in two waves, as in LPA* or dynamic brushfire), shared by the heuristic
 // grids and the block abstraction. Exact: the result is what a fresh Dijkstra gives.
 //  1. Raise: a node's old distance still holds if some predecessor that kept its own reaches it
@@ -27,14 +28,16 @@ namespace detail {
 
 /// dist holds the old distances, and receives the new ones (in place). forNear(f) calls f(node)
 /// for every node near the change; holds(node) is the raise test above (false for a node that
-/// is now impassable; true for the goal if it is passable); forSuccessors(node, f) and
+/// is now impassable; true for a goal node if it is passable); forSuccessors(node, f) and
 /// forPredecessors(node, f) call f(other) along the relaxation's edges, out of and into node;
 /// propagate(queue) runs the Dijkstra of a fresh computation from the nodes in `queue` and
-/// returns false if stopped. goal_open: the goal is passable (a source again if it was not).
+/// returns false if stopped. The goal nodes are goal .. goal + goal_count - 1 (distance 0);
+/// goal_open: they are passable (sources again if they were not).
 /// Returns false if `stop` asked to stop (dist is then incomplete); `lower` receives the last
 /// key the second wave popped.
 template <class ForNear, class Holds, class ForSuccessors, class ForPredecessors, class Propagate>
-bool repairDistances(std::uint32_t* dist, std::uint32_t goal, bool goal_open, ForNear&& forNear, Holds&& holds,
+bool repairDistances(std::uint32_t* dist, std::uint32_t goal, std::uint32_t goal_count, bool goal_open,
+                     ForNear&& forNear, Holds&& holds,
                      ForSuccessors&& forSuccessors, ForPredecessors&& forPredecessors, Propagate&& propagate,
                      const GridStop* stop, RadixHeap& lower) {
   std::vector<std::uint32_t> failed;
@@ -57,9 +60,11 @@ bool repairDistances(std::uint32_t* dist, std::uint32_t goal, bool goal_open, Fo
       });
     }
   }
-  if (goal_open && dist[goal] != 0) {
-    dist[goal] = 0;
-    lower.push(0, goal);
+  for (std::uint32_t v = goal; goal_open && v < goal + goal_count; ++v) {
+    if (dist[v] != 0) {
+      dist[v] = 0;
+      lower.push(0, v);
+    }
   }
   forNear([&](std::uint32_t v) {
     if (dist[v] != kUnreachable) lower.push(dist[v], v);

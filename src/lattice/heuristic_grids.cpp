@@ -480,7 +480,7 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   auto propagate = [&](detail::RadixHeap& q) {
     return nm == 8 ? dijkstra8(kind, dist, q, stop) : dijkstra(kind, dist, q, stop);
   };
-  if (!detail::repairDistances(dist, goal, level[goal] != 255, forNear, holds, along(+1), along(-1), propagate, stop,
+  if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1), along(-1), propagate, stop,
                                queue)) {
     return false;
   }

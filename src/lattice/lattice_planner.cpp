@@ -244,25 +244,37 @@ QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, s
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
                                 const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
-  return plan(start, goal, 0.0, algorithm, limits, on_solution);
+  return plan(start, goal, GoalOptions(), algorithm, limits, on_solution);
 }
 
-PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, double goal_tolerance,
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
                                 const PlannerConfig& algorithm, const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
+  const double goal_tolerance = goal_options.tolerance;
+  const bool any_heading = goal_options.any_heading;
   if (!std::isfinite(goal_tolerance) || goal_tolerance < 0.0) {
     throw std::invalid_argument("the goal tolerance must be finite and >= 0 (metres)");
   }
   const auto call_start = std::chrono::steady_clock::now();
+  const LatticeGraph& g = *impl_->graph;
   PlanResult result;
   result.error = checkQuery(start, goal, &result.message);
-  const bool substitute = result.error == QueryError::kGoalInCollision && goal_tolerance > 0.0;
-  if (result.error != QueryError::kNone && !substitute) return result;
-  std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
-  const LatticeGraph& g = *impl_->graph;
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   g.poseToState(goal, &t.x, &t.y, &t.heading);
+  if (result.error == QueryError::kGoalInCollision && any_heading) {
+    // Another heading may be free there; the search takes any.
+    for (int h = 0; h < g.numHeadings() && result.error != QueryError::kNone; ++h) {
+      if (!g.stateValid(t.x, t.y, h)) continue;
+      t.heading = h;
+      result.error = QueryError::kNone;
+      result.message.clear();
+    }
+    if (result.error != QueryError::kNone) result.message += " at every heading";
+  }
+  const bool substitute = result.error == QueryError::kGoalInCollision && goal_tolerance > 0.0;
+  if (result.error != QueryError::kNone && !substitute) return result;
+  std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
   // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
   // a big map).
   GridStop stop;
@@ -313,29 +325,35 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, double 
   // Backward search runs from the goal to the start, with heuristics measured from the start.
   const bool backward = g.config().backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
-  auto grids = impl_->heuristicsFor(to.x, to.y, to.heading, uses_inadmissible, backward, stop, &result.heuristic_seconds,
-                                    &result.heuristic_source);
+  // A goal of any heading has its own coarse distances (to the nearest of its headings).
+  const int table_heading = any_heading && !backward ? kAnyHeading : to.heading;
+  auto grids = impl_->heuristicsFor(to.x, to.y, table_heading, uses_inadmissible, backward, stop,
+                                    &result.heuristic_seconds, &result.heuristic_source);
   if (!grids) {
     result.search.status = stopped_status();
     return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time
   }
-  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward);
+  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward, any_heading);
+  // Solution paths run start ... goal; an any-heading goal's virtual state ends them.
+  auto lattice_path = [&](std::vector<StateId>& path) {
+    if (backward) std::reverse(path.begin(), path.end());
+    if (!path.empty() && path.back() == problem.virtualGoal()) path.pop_back();
+  };
   SearchLimits remaining = limits;
   const double offset = result.goal_seconds + result.heuristic_seconds;
   remaining.time_limit_s = std::max(0.0, limits.time_limit_s - offset);
   SolutionCallback cb = [&](const Solution& sol) {
     LatticeSolution ls;
     ls.search = sol;
-    if (backward) std::reverse(ls.search.path.begin(), ls.search.path.end());  // start ... goal
+    lattice_path(ls.search.path);
     ls.poses = impl_->posesOf(problem, ls.search.path);
     ls.elapsed_total_s = sol.elapsed_s + offset;
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
   };
   result.search = planner->search(problem, remaining, cb);
-  if (backward) {
-    for (Solution& sol : result.search.solutions) std::reverse(sol.path.begin(), sol.path.end());
-  }
+  for (Solution& sol : result.search.solutions) lattice_path(sol.path);
+  if (any_heading && !result.solutions.empty()) result.planned_goal->theta = result.solutions.back().poses.back().theta;
   return result;
 }
 

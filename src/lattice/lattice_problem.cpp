@@ -8,7 +8,8 @@ namespace amha {
 namespace lattice {
 
 LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
-                               LatticeState start, LatticeState goal, int num_inadmissible, bool backward)
+                               LatticeState start, LatticeState goal, int num_inadmissible, bool backward,
+                               bool any_goal_heading)
     : graph_(graph),
       heur_(std::move(heuristics)),
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
@@ -25,17 +26,36 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   const int tiles_y = (graph.height() + kTile - 1) / kTile;
   pages_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y, nullptr);
   page_entries_ = static_cast<std::size_t>(kTile) * kTile * headings_;
+  // Searching backward, the heuristics measure from the lattice start, which `goal` is.
+  const LatticeState lattice_goal = backward ? start : goal;
   goal_x_ = goal.x;
   goal_y_ = goal.y;
   const std::vector<double>& angles = graph.primitives().heading_angles;
-  const bool turn_term = graph.config().anchor_turn_term;
+  // A goal of any heading has no heading to turn to (backward, the turn is to the lattice
+  // start's heading, which is fixed).
+  const bool turn_term = graph.config().anchor_turn_term && !(any_goal_heading && !backward);
   for (int h = 0; h < headings_; ++h) {
     const double d = turn_term ? angleDistance(angles[h], angles[goal.heading]) : 0.0;
     turn_euclid_.push_back(graph.euclidTurnUnitsPerRadian() * d);
     turn_grid_.push_back(graph.gridTurnUnitsPerRadian() * d * kGridFraction);
   }
-  start_ = id(start.x, start.y, start.heading);
-  goal_ = id(goal.x, goal.y, goal.heading);
+  if (!any_goal_heading) {
+    start_ = id(start.x, start.y, start.heading);
+    goal_ = id(goal.x, goal.y, goal.heading);
+    return;
+  }
+  virtual_goal_ = static_cast<StateId>(states_.size());
+  states_.push_back((static_cast<std::uint64_t>(lattice_goal.y) * width_ + lattice_goal.x) << 16 | kVirtualHeading);
+  if (backward) {
+    start_ = virtual_goal_;
+    goal_ = id(goal.x, goal.y, goal.heading);
+    for (int h = 0; h < headings_; ++h) {
+      if (graph.stateValid(lattice_goal.x, lattice_goal.y, h)) into_goal_cell_.push_back(Edge{id(lattice_goal.x, lattice_goal.y, h), 0});
+    }
+  } else {
+    start_ = id(start.x, start.y, start.heading);
+    goal_ = virtual_goal_;
+  }
 }
 
 LatticeProblem::~LatticeProblem() = default;
@@ -63,6 +83,10 @@ StateId LatticeProblem::id(int x, int y, int heading) {
 
 void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   out.clear();
+  if (s == virtual_goal_) {  // forward: the end; backward: the start, joined to the goal's cell
+    if (backward_) out = into_goal_cell_;
+    return;
+  }
   const LatticeState st = state(s);
   if (backward_) {
     for (const LatticeAction* a : graph_.actionsInto(st.heading)) {
@@ -78,6 +102,9 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
     if (c == kInvalidEdge) continue;
     out.push_back(Edge{id(st.x + a->dx, st.y + a->dy, a->end_heading), c});
   }
+  // Any heading at the goal's cell will do: on to the virtual goal, free (the search core allows
+  // cost 0 on edges that lie on no cycle: nothing leaves the virtual goal).
+  if (virtual_goal_ != kNoState && st.x == goal_x_ && st.y == goal_y_) out.push_back(Edge{virtual_goal_, 0});
 }
 
 const LatticeAction* LatticeProblem::actionBetween(StateId from, StateId to, Cost* cost) const {
@@ -114,6 +141,10 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading) const {
 }
 
 void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {
+  if (s == virtual_goal_) {  // the goal, or searching backward the start: 0 is exact, or admissible
+    for (std::size_t i = 0; i < count; ++i) h[i] = 0;
+    return;
+  }
   const LatticeState st = state(s);
   h[0] = anchor(st.x, st.y, st.heading);
   for (std::size_t i = 1; i < count; ++i) {

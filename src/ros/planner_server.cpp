@@ -491,8 +491,10 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       solutions_pub_.publish(m);
       if (!m.same_path_as_previous) {
         path_pub_.publish(m.path);
-        // With a goal tolerance the path may end at a substitute: mark where it really ends.
-        const lat::Pose2D& goal_mark = r.goal_tolerance > 0.0 ? solution.poses.back() : g;
+        // With a goal tolerance or any goal heading the path may end elsewhere than at the
+        // goal pose: mark where it really ends.
+        const bool free_end = r.goal_tolerance > 0.0 || r.ignore_goal_heading || params_.ignore_goal_heading;
+        const lat::Pose2D& goal_mark = free_end ? solution.poses.back() : g;
         markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, goal_mark, frame, stamp,
                                               params_.marker_spacing));
       }
@@ -500,7 +502,10 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
       res.solutions.push_back(std::move(m));
     };
-    const lat::PlanResult result = planner->plan(s, g, r.goal_tolerance, config, limits, on_solution);
+    lat::GoalOptions goal_options;
+    goal_options.tolerance = r.goal_tolerance;
+    goal_options.any_heading = r.ignore_goal_heading || params_.ignore_goal_heading;
+    const lat::PlanResult result = planner->plan(s, g, goal_options, config, limits, on_solution);
     res.planning_time = result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds;
     if (result.error == lat::QueryError::kNone) {
       ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
@@ -637,6 +642,7 @@ bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
   r.w1 = req.w1;
   r.w2 = req.w2;
   r.goal_tolerance = req.goal_tolerance;
+  r.ignore_goal_heading = req.ignore_goal_heading;
   res = runBlocking(r);
   logOutcome("plan", res);
   return true;
@@ -667,6 +673,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
   r.w1 = g->w1;
   r.w2 = g->w2;
   r.goal_tolerance = g->goal_tolerance;
+  r.ignore_goal_heading = g->ignore_goal_heading;
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
   auto flag = newCancelFlag();

@@ -90,7 +90,10 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
     const double tol = std::abs(in.small(res * 4));
     PlanResult r;
     try {
-      r = planner->plan(a, b, tol, pc, limits);
+      GoalOptions options;
+      options.tolerance = tol;
+      options.any_heading = in.u8() & 1;
+      r = planner->plan(a, b, options, pc, limits);
       if (!std::isfinite(tol)) finding("a non-finite goal tolerance was accepted");
     } catch (const std::invalid_argument&) {
       if (std::isfinite(tol)) finding("a finite goal tolerance was refused");

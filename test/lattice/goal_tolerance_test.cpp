@@ -224,6 +224,12 @@ std::shared_ptr<GridMap> hollowBoxMap() {
   return m;
 }
 
+GoalOptions tolerance(double metres) {
+  GoalOptions o;
+  o.tolerance = metres;
+  return o;
+}
+
 Pose2D cellCentre(int x, int y, double theta = 0.0) { return {(x + 0.5) * 0.05, (y + 0.5) * 0.05, theta}; }
 
 LatticeConfig boxRobot() {
@@ -241,7 +247,7 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   // A free goal is planned to exactly, whatever the tolerance.
   const Pose2D free_goal = cellCentre(65, 12, 1.0);
   const PlanResult exact = planner.plan(start, free_goal, astar, SearchLimits());
-  const PlanResult tolerant = planner.plan(start, free_goal, 0.5, astar, SearchLimits());
+  const PlanResult tolerant = planner.plan(start, free_goal, tolerance(0.5), astar, SearchLimits());
   ASSERT_TRUE(exact.search.hasSolution());
   ASSERT_TRUE(tolerant.search.hasSolution());
   EXPECT_FALSE(tolerant.goal_substituted);
@@ -255,7 +261,7 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   const Pose2D on_wall = cellCentre(30, 40, 0.0);
   PlanResult r = planner.plan(start, on_wall, astar, SearchLimits());
   EXPECT_EQ(r.error, QueryError::kGoalInCollision);
-  r = planner.plan(start, on_wall, 0.5, astar, SearchLimits());
+  r = planner.plan(start, on_wall, tolerance(0.5), astar, SearchLimits());
   ASSERT_EQ(r.error, QueryError::kNone) << r.message;
   ASSERT_TRUE(r.search.hasSolution());
   EXPECT_TRUE(r.goal_substituted);
@@ -273,33 +279,33 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   // than the outside (x = 27, 4 away), but closed to a start outside, so the substitute is
   // outside; from a start inside, it is inside.
   const Pose2D inner_wall = cellCentre(31, 40, 0.0);
-  r = planner.plan(start, inner_wall, 0.5, astar, SearchLimits());
+  r = planner.plan(start, inner_wall, tolerance(0.5), astar, SearchLimits());
   ASSERT_TRUE(r.search.hasSolution()) << r.message;
   EXPECT_LT(r.planned_goal->x, 30 * 0.05);
-  r = planner.plan(cellCentre(40, 40), inner_wall, 0.5, astar, SearchLimits());
+  r = planner.plan(cellCentre(40, 40), inner_wall, tolerance(0.5), astar, SearchLimits());
   ASSERT_TRUE(r.search.hasSolution()) << r.message;
   EXPECT_NEAR(r.planned_goal->x, cellCentre(34, 40).x, 1e-9);
 
   // Too small a tolerance: still in collision, and the message says why.
-  r = planner.plan(start, on_wall, 0.1, astar, SearchLimits());
+  r = planner.plan(start, on_wall, tolerance(0.1), astar, SearchLimits());
   EXPECT_EQ(r.error, QueryError::kGoalInCollision);
   EXPECT_NE(r.message.find("goal tolerance"), std::string::npos) << r.message;
   EXPECT_FALSE(r.goal_substituted);
   EXPECT_TRUE(r.solutions.empty());
 
   // From inside the box, free poses near an outside goal exist but are all out of reach.
-  r = planner.plan(cellCentre(40, 40), cellCentre(29, 10, 0.0), 0.3, astar, SearchLimits());
+  r = planner.plan(cellCentre(40, 40), cellCentre(29, 10, 0.0), tolerance(0.3), astar, SearchLimits());
   EXPECT_EQ(r.error, QueryError::kNone);  // (29, 10) is free: planned to exactly, and unreachable
   EXPECT_EQ(r.search.status, SearchStatus::kNoSolution);
   // (29, 40) is free, but the robot there touches the wall; within 0.12 m only x = 27, outside.
-  r = planner.plan(cellCentre(40, 40), cellCentre(29, 40, 0.0), 0.12, astar, SearchLimits());
+  r = planner.plan(cellCentre(40, 40), cellCentre(29, 40, 0.0), tolerance(0.12), astar, SearchLimits());
   EXPECT_EQ(r.error, QueryError::kGoalUnreachable) << r.message;
   EXPECT_STREQ(queryErrorName(r.error), "goal_unreachable");
 
   // Out of the map stays an error; bad tolerances are refused.
-  EXPECT_EQ(planner.plan(start, {-0.2, 1.0, 0.0}, 1.0, astar, SearchLimits()).error, QueryError::kGoalOutOfMap);
+  EXPECT_EQ(planner.plan(start, {-0.2, 1.0, 0.0}, tolerance(1.0), astar, SearchLimits()).error, QueryError::kGoalOutOfMap);
   for (const double bad : {-0.1, static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
-    EXPECT_THROW(planner.plan(start, on_wall, bad, astar, SearchLimits()), std::invalid_argument);
+    EXPECT_THROW(planner.plan(start, on_wall, tolerance(bad), astar, SearchLimits()), std::invalid_argument);
   }
 }
 
@@ -308,14 +314,14 @@ TEST(GoalToleranceTest, SubstitutePathsValidateAndAreOptimalForTheSubstitute) {
   // and every algorithm's solutions end there within their certified bounds of that optimum.
   LatticePlanner planner(hollowBoxMap(), boxRobot());
   const Pose2D start = cellCentre(10, 70, 0.0), goal = cellCentre(49, 35, 2.0);
-  const PlanResult a = planner.plan(start, goal, 0.4, defaultConfig(Algorithm::kAStar), SearchLimits());
+  const PlanResult a = planner.plan(start, goal, tolerance(0.4), defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_TRUE(a.search.hasSolution()) << a.message;
   ASSERT_TRUE(a.goal_substituted);
   const PlanResult direct = planner.plan(start, *a.planned_goal, defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_TRUE(direct.search.hasSolution());
   EXPECT_EQ(a.search.best().cost, direct.search.best().cost);
   for (const Algorithm alg : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kAnaStar}) {
-    const PlanResult r = planner.plan(start, goal, 0.4, defaultConfig(alg), SearchLimits());
+    const PlanResult r = planner.plan(start, goal, tolerance(0.4), defaultConfig(alg), SearchLimits());
     ASSERT_TRUE(r.search.hasSolution()) << algorithmName(alg);
     EXPECT_TRUE(r.goal_substituted);
     for (const LatticeSolution& s : r.solutions) {
@@ -333,7 +339,7 @@ TEST(GoalToleranceTest, CancelBeforeTheChoiceStopsIt) {
   std::atomic<bool> cancel{true};
   SearchLimits limits;
   limits.cancel = &cancel;
-  const PlanResult r = planner.plan(cellCentre(10, 10), cellCentre(30, 40), 0.5, defaultConfig(Algorithm::kAStar), limits);
+  const PlanResult r = planner.plan(cellCentre(10, 10), cellCentre(30, 40), tolerance(0.5), defaultConfig(Algorithm::kAStar), limits);
   EXPECT_EQ(r.error, QueryError::kNone);
   EXPECT_EQ(r.search.status, SearchStatus::kCancelled);
   EXPECT_TRUE(r.solutions.empty());

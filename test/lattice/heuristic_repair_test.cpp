@@ -96,14 +96,15 @@ TEST(HeuristicRepair, RepairedGridsEqualFreshOnesAlongChainsOfUpdates) {
     auto graph = std::make_unique<LatticeGraph>(map, robot.config);
     auto builder = std::make_unique<HeuristicGridBuilder>(*graph);
     // Goals anywhere (free or not): their grids, and the changes since they were computed.
+    // One goal of any heading: its coarse distances have a source per heading.
     struct Held {
-      int x, y;
+      int x, y, heading;
       std::shared_ptr<const GoalHeuristics> grids;
       std::vector<CellRect> changed;
     };
     std::vector<Held> held;
-    for (const auto& g : {std::array<int, 2>{70, 50}, {12, 88}, {130, 7}, {40, 30}}) {
-      held.push_back({g[0], g[1], builder->compute(g[0], g[1], 0, true, 1), {}});
+    for (const auto& g : {std::array<int, 3>{70, 50, 0}, {12, 88, kAnyHeading}, {130, 7, 3}, {40, 30, 0}}) {
+      held.push_back({g[0], g[1], g[2], builder->compute(g[0], g[1], g[2], true, 1), {}});
     }
     int repaired_grids = 0, in_place = 0;
     for (int step = 0; step < 30; ++step) {
@@ -111,8 +112,8 @@ TEST(HeuristicRepair, RepairedGridsEqualFreshOnesAlongChainsOfUpdates) {
       CellRect r;
       if (step % 5 != 4) {
         r = randomUpdate(rng, *map, *next, step);
-      } else {  // now and then right at a goal, so that it gets blocked and freed
-        const Held& h = held[static_cast<std::size_t>(step / 5) % held.size()];
+      } else {  // now and then right at a goal, so that it gets blocked, then freed
+        const Held& h = held[static_cast<std::size_t>(step / 10) % held.size()];
         r = {h.x - 3, h.y - 3, h.x + 4, h.y + 4};
         const std::uint8_t v = (step / 5) % 2 == 0 ? kLethalCost : 0;
         for (int y = r.y0; y < r.y1; ++y) {
@@ -131,10 +132,11 @@ TEST(HeuristicRepair, RepairedGridsEqualFreshOnesAlongChainsOfUpdates) {
         const DistanceGrid* old_anchor = h.grids->grids[0].get();
         const auto repaired = renew ? updated_builder->repair(std::move(h.grids), h.changed, true, 1)
                                     : updated_builder->repair(h.grids, h.changed, true, 1);
-        const auto full = updated_builder->compute(h.x, h.y, 0, true, 1);
+        const auto full = updated_builder->compute(h.x, h.y, h.heading, true, 1);
         ASSERT_TRUE(repaired && full);
         const std::string what = std::string(robot.name) + ", update " + std::to_string(step) + ", goal (" +
-                                 std::to_string(h.x) + ", " + std::to_string(h.y) + "), grids " +
+                                 std::to_string(h.x) + ", " + std::to_string(h.y) + ", heading " +
+                                 std::to_string(h.heading) + "), grids " +
                                  std::to_string(h.changed.size()) + " update(s) old";
         expectSame(*repaired, *full, map->width, what);
         if (HasFailure()) return;

@@ -423,6 +423,29 @@ TEST(PlannerNodelet, GoalToleranceReplacesAnObstructedGoalByAReachableOne) {
   expectValidPath(out.result->path, kRoomStart, out.result->planned_goal, testMap());
 }
 
+TEST(PlannerNodelet, IgnoreGoalHeadingEndsWithTheCheapestHeading) {
+  // A goal 1.5 m ahead, facing back: held to its heading the robot must turn around there;
+  // free, it drives straight in.
+  const auto facing_back = pose(1.5, 0.0, M_PI, "map");
+  const auto fixed = plan(kRoomStart, facing_back, 5.0, "astar");
+  ASSERT_EQ(fixed.status, Status::SUCCESS) << fixed.message;
+  Plan srv;
+  srv.request.start = kRoomStart;
+  srv.request.goal = facing_back;
+  srv.request.time_budget = 5.0;
+  srv.request.algorithm = "astar";
+  srv.request.ignore_goal_heading = true;
+  ASSERT_TRUE(ros::service::call("/planner/plan", srv));
+  const auto& res = srv.response;
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_LT(res.cost, fixed.cost);
+  EXPECT_FALSE(res.goal_substituted);
+  EXPECT_EQ(res.planned_goal.header.frame_id, "map");
+  EXPECT_LE(angleDiff(yawOf(res.planned_goal.pose), 0.0), kHeadingBin / 2) << "it arrives facing ahead";
+  expectValidPath(res.path, kRoomStart, res.planned_goal, testMap());
+  EXPECT_LE(std::hypot(res.planned_goal.pose.position.x - 1.5, res.planned_goal.pose.position.y), kResolution);
+}
+
 TEST(PlannerNodelet, StartFromTfAndGoalInAnotherFrame) {
   // planner_nodelet.test publishes map -> base_link (1, 1, yaw 0.5) and map -> odom
   // (0.5, -0.5, yaw 0.3).

@@ -315,7 +315,7 @@ class Soak:
         req = {"start": start, "goal": goal, "time_budget": rng.choice([0.0, 0.05, 0.2, 0.5, 1.0, 2.0]),
                "algorithm": rng.choice(["", "", "amha", "mha", "ara", "ana", "wastar", "astar"]),
                "w1": rng.choice([0.0, 0.0, 1.0, 1.5, 3.0, 10.0]), "w2": rng.choice([0.0, 0.0, 1.0, 2.0, 5.0]),
-               "goal_tolerance": 0.0}
+               "goal_tolerance": 0.0, "ignore_goal_heading": rng.random() < 0.15}
         expected = None  # any clean status
         if kind == "valid_robot_start":
             start.header.frame_id = ""
@@ -385,9 +385,10 @@ class Soak:
             expected = expected | {S.BUSY}
         return kind, req, expected, start_map, goal_map
 
-    def check_path(self, where, path, start_map, goal_map, grids, goal_tolerance=0.0):
+    def check_path(self, where, path, start_map, goal_map, grids, goal_tolerance=0.0, any_heading=False):
         """Checks one path (nav_msgs/Path); returns the reasons it is wrong ([] = valid). With a
-        goal tolerance it may end anywhere within the tolerance of the goal, at any heading."""
+        goal tolerance it may end anywhere within the tolerance of the goal, at any heading; with
+        any_heading, at the goal's position with any heading."""
         poses = path.poses
         if path.header.frame_id != "map":
             return ["path frame '%s'" % path.header.frame_id]
@@ -406,7 +407,7 @@ class Soak:
             # Generated headings are the directions of small lattice vectors: the widest gap is
             # atan(1/2) (26.6 degrees), so the nearest heading is within half of it.
             if angle_diff(xs[0][2], start_map[2]) > HALF_BIN or (
-                    goal_tolerance == 0.0 and angle_diff(xs[-1][2], goal_map[2]) > HALF_BIN):
+                    goal_tolerance == 0.0 and not any_heading and angle_diff(xs[-1][2], goal_map[2]) > HALF_BIN):
                 err.append("start or end heading off by more than half a heading bin")
             for k in range(1, len(xs)):
                 if math.hypot(xs[k][0] - xs[k - 1][0], xs[k][1] - xs[k - 1][1]) > 1.5 * g.res + 1e-6:
@@ -446,6 +447,7 @@ class Soak:
             return
         grids = self.candidate_maps(t_sent, t_done)
         tolerance = 0.0 if req is None else req["goal_tolerance"]
+        any_heading = req is not None and req["ignore_goal_heading"]
         if res.goal_substituted:
             # The substitute is where the path ends, within the tolerance of the goal.
             end, pg = res.path.poses[-1].pose.position, res.planned_goal
@@ -455,7 +457,8 @@ class Soak:
                           "%s" % (where, res.message))
             with self.lock:
                 self.stats["goals_substituted"] += 1
-        errs = self.check_path(where, res.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0)
+        errs = self.check_path(where, res.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0,
+                               any_heading)
         with self.lock:
             self.stats["paths_checked"] += 1
         if errs:
@@ -482,7 +485,8 @@ class Soak:
             if s.same_path_as_previous != (len(s.path.poses) == 0) and k > 0:
                 self.fail("%s: solution %d: same_path_as_previous does not match its empty path" % (where, k))
             if s.path.poses:
-                e = self.check_path(where, s.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0)
+                e = self.check_path(where, s.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0,
+                                    any_heading)
                 if e:
                     self.fail("%s: solution %d invalid: %s" % (where, k, " | ".join(e)))
             prev = s
@@ -500,7 +504,8 @@ class Soak:
     def call_service(self, rng, proxies):
         kind, r, expected, sm, gm = self.make_request(rng)
         req = PlanRequest(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
-                          w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"])
+                          w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"],
+                          ignore_goal_heading=r["ignore_goal_heading"])
         t_sent = time.time()
         res = proxies["plan"](req)
         self.check_answer("plan", kind, expected, res, sm, gm, t_sent, time.time(), False, r)
@@ -531,7 +536,8 @@ class Soak:
     def call_action(self, rng, client):
         kind, r, expected, sm, gm = self.make_request(rng)
         goal = PlanAnytimeGoal(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
-                               w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"])
+                               w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"],
+                               ignore_goal_heading=r["ignore_goal_heading"])
         feedback = []
         t_sent = time.time()
         client.send_goal(goal, feedback_cb=lambda f: feedback.append(time.time()))

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "amha_planner/lattice/lattice_planner.h"
@@ -34,7 +35,8 @@ class CoarseLattice {
   int block() const { return k_; }
   /// Distances (cost units) of every abstract state to the goal's (forward = false), or from
   /// the start's (forward = true, for backward search), kUnreachable where there is no path.
-  /// Empty if `stop` asked to stop first.
+  /// heading kAnyHeading: to (or from) the nearest of the block's states, whatever their
+  /// heading. Empty if `stop` asked to stop first.
   std::vector<std::uint32_t> distances(int x, int y, int heading, bool forward = false,
                                        const GridStop* stop = nullptr) const;
   /// The same distances, repaired from `old`: distances() of an abstraction whose map differed
@@ -55,6 +57,8 @@ class CoarseLattice {
     std::int64_t block_offset;  // other block index - block index
     std::int64_t base_cost;
   };
+  /// The first node of the goal's abstract states and how many there are (consecutive).
+  std::pair<std::size_t, std::size_t> goalNodes(int x, int y, int heading) const;
   /// Recomputes the blocks that hold cells of `cells`.
   void fillBlocks(const CellRect& cells);
   /// The cost of edge e between nodes whose blocks are vb and vb + e.block_offset, or

@@ -145,6 +145,26 @@ struct LatticeConfig {
   bool repair_heuristics = true;
 };
 
+/// A goal heading that any heading satisfies (GoalOptions::any_heading, and the heuristic
+/// tables of such goals).
+constexpr int kAnyHeading = -1;
+
+/// What counts as reaching the goal (added after the API freeze; the defaults are the goal pose
+/// exactly, as plan() without options).
+struct GoalOptions {
+  /// Metres, as nav_msgs/GetPlan's tolerance: a goal inside the map but in collision is replaced
+  /// by the nearest collision-free pose within this distance of it that the start may reach
+  /// (nearestReachableGoal in goal_tolerance.h; PlanResult::goal_substituted and planned_goal
+  /// say so). A collision-free goal is planned to exactly, whatever the tolerance. If there is
+  /// no collision-free pose within the tolerance the error is kGoalInCollision, if none of them
+  /// is reachable kGoalUnreachable. The time spent choosing counts against the budget.
+  double tolerance = 0.0;
+  /// Any heading at the goal's cell will do: the search ends at whichever is cheapest to reach
+  /// (the goal's own heading is ignored; the goal is in collision only if every heading
+  /// collides there). The bounds are relative to the optimal cost to any of them.
+  bool any_heading = false;
+};
+
 /// Why a query was refused before searching.
 enum class QueryError {
   kNone,
@@ -190,9 +210,10 @@ struct PlanResult {
   double heuristic_seconds = 0.0;
   HeuristicSource heuristic_source = HeuristicSource::kCached;  ///< (added after the API freeze)
   /// The pose the search plans to: the centre of the goal's cell with the goal's heading bin
-  /// or, when a goal tolerance replaced an obstructed goal, that substitute. Set once it is
-  /// known: always when error is kNone, unless a stop came while the substitute was chosen
-  /// (added after the API freeze).
+  /// or, when a goal tolerance replaced an obstructed goal, that substitute; with any heading,
+  /// the heading of the last solution's end (if there is none, the goal's or a collision-free
+  /// one). Set once it is known: always when error is kNone, unless a stop came while the
+  /// substitute was chosen (added after the API freeze).
   std::optional<Pose2D> planned_goal;
   /// True when the goal was in collision and a goal tolerance replaced it by planned_goal
   /// (message then says so); the solutions' bounds are relative to the optimal cost to
@@ -236,15 +257,10 @@ class LatticePlanner {
   PlanResult plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
                   const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});
-  /// The same with a goal tolerance (metres, finite and >= 0, else std::invalid_argument), as
-  /// nav_msgs/GetPlan's: a goal that is inside the map but in collision is replaced by the
-  /// nearest collision-free pose within `goal_tolerance` of it that the start may reach
-  /// (nearestReachableGoal in goal_tolerance.h; PlanResult::goal_substituted and planned_goal
-  /// say so). A collision-free goal is planned to exactly, whatever the tolerance. If there is
-  /// no collision-free pose within the tolerance the error is kGoalInCollision, if none of them
-  /// is reachable kGoalUnreachable. The time spent choosing counts against the budget.
-  PlanResult plan(const Pose2D& start, const Pose2D& goal, double goal_tolerance, const PlannerConfig& algorithm,
-                  const SearchLimits& limits,
+  /// The same with GoalOptions (a goal tolerance, any goal heading): see there. The tolerance
+  /// must be finite and >= 0, else std::invalid_argument.
+  PlanResult plan(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
+                  const PlannerConfig& algorithm, const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});
 
   /// The footprint polygon placed at a pose (map frame), for drawing and markers.

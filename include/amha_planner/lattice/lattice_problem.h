@@ -27,8 +27,13 @@ class LatticeProblem final : public SearchProblem {
   /// passes the lattice goal as `start` and the lattice start as `goal`; successors() then
   /// returns predecessors with the cost of the forward edge, and the heuristics (computed with
   /// forward distances from the lattice start) estimate the cost from the lattice start.
+  /// any_goal_heading: every valid state of the lattice goal's cell is a goal. The search then
+  /// runs to (backward: from) a virtual state joined to each of them by an edge of cost 0, whose
+  /// id virtualGoal() gives; heuristics must then be for the goal cell with kAnyHeading (the
+  /// coarse distances to any of its headings), and the lattice goal's heading is unused.
   LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
-                 LatticeState start, LatticeState goal, int num_inadmissible, bool backward = false);
+                 LatticeState start, LatticeState goal, int num_inadmissible, bool backward = false,
+                 bool any_goal_heading = false);
   ~LatticeProblem() override;
 
   StateId start() const override { return start_; }
@@ -37,6 +42,12 @@ class LatticeProblem final : public SearchProblem {
   std::size_t numHeuristics() const override { return 1 + static_cast<std::size_t>(num_inadmissible_); }
   void heuristics(StateId s, HeuristicValue* h, std::size_t count) override;
   std::size_t memoryBytes() const override;
+
+  /// The virtual goal state of an any_goal_heading problem, else kNoState. A path's virtual
+  /// state (its last, or first searching backward) is no lattice state: state() of it gives the
+  /// goal's cell with heading kVirtualHeading.
+  StateId virtualGoal() const { return virtual_goal_; }
+  static constexpr int kVirtualHeading = 0xFFFF;
 
   LatticeState state(StateId s) const {
     const std::uint64_t v = states_[s];
@@ -67,8 +78,9 @@ class LatticeProblem final : public SearchProblem {
   std::vector<std::unique_ptr<std::uint32_t[]>> slabs_;  // page storage, 64 pages a slab
   std::size_t slab_used_ = 0;
   std::vector<std::uint64_t> states_;  // cell << 16 | heading
-  StateId start_ = kNoState, goal_ = kNoState;
+  StateId start_ = kNoState, goal_ = kNoState, virtual_goal_ = kNoState;
   int goal_x_ = 0, goal_y_ = 0;
+  std::vector<Edge> into_goal_cell_;  // backward, any heading: the virtual start's edges
   std::vector<double> turn_euclid_, turn_grid_;  // turning terms per heading (cost units)
   static constexpr int kTile = 8;
   static constexpr std::size_t kPagesPerSlab = 64;

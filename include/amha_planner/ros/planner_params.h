@@ -25,6 +25,9 @@ struct PlannerParams {
   amha::QueueSchedule queue_schedule = amha::QueueSchedule::kRoundRobin;
 
   double default_time_budget = 5.0;   ///< seconds, when a request gives 0
+  /// Every request's goal heading is free (as if each set ignore_goal_heading; also
+  /// ~make_plan's, whose GetPlan cannot say it).
+  bool ignore_goal_heading = false;
   double max_memory_mb = 2048.0;      ///< search + lattice state memory cap per request
 
   std::string global_frame = "map";

@@ -65,6 +65,7 @@ class PlannerServer {
     std::string algorithm;
     double w1 = 0.0, w2 = 0.0;
     double goal_tolerance = 0.0;  ///< metres (nav_msgs/GetPlan's tolerance)
+    bool ignore_goal_heading = false;
   };
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);

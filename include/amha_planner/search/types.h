@@ -23,6 +23,8 @@ using HeuristicValue = std::uint32_t;
 constexpr HeuristicValue kInfiniteHeuristic = std::numeric_limits<HeuristicValue>::max();
 
 /// An edge of the search graph. Costs must be >= 1: positive costs keep parent chains acyclic.
+/// The one exception is a cost of 0 on an edge that lies on no cycle (into a state with no
+/// successors, or out of one with no predecessors, as the lattice's virtual goal).
 struct Edge {
   StateId to;
   Cost cost;
