@@ -36,6 +36,9 @@ void validateMap(const GridMap& m) {
   if (std::fabs(m.origin_x) > kMaxOriginMagnitude || std::fabs(m.origin_y) > kMaxOriginMagnitude) {
     fail(kind, "map: origin (" + str(m.origin_x) + ", " + str(m.origin_y) + ") is farther than " + str(kMaxOriginMagnitude) + " m");
   }
+  if (std::fabs(m.origin_yaw) > kMaxOriginYaw) {
+    fail(kind, "map: origin yaw " + str(m.origin_yaw) + " rad is beyond +-" + str(kMaxOriginYaw) + " rad");
+  }
 }
 
 void validateConfig(const LatticeConfig& c) {

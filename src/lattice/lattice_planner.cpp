@@ -259,6 +259,9 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   const LatticeGraph& g = *impl_->graph;
   PlanResult result;
   result.error = checkQuery(start, goal, &result.message);
+  // Only a goal in collision may still be planned for: then both poses are finite and inside
+  // the map (and the start valid), which poseToState needs.
+  if (result.error != QueryError::kNone && result.error != QueryError::kGoalInCollision) return result;
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   g.poseToState(goal, &t.x, &t.y, &t.heading);

@@ -51,6 +51,11 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
     m << "origin (" << origin_x << ", " << origin_y << ") is farther than " << kMaxOriginMagnitude << " m";
     fail(m.str());
   }
+  if (std::fabs(origin_yaw) > kMaxOriginYaw) {
+    std::ostringstream m;
+    m << "origin yaw " << origin_yaw << " rad is beyond +-" << kMaxOriginYaw << " rad";
+    fail(m.str());
+  }
   if (data == nullptr && data_size > 0) fail("null data");
   if (data_size != cells) {
     std::ostringstream m;

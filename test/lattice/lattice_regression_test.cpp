@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "amha_planner/lattice/motion_primitives.h"
@@ -186,6 +187,68 @@ TEST(OccupancyRegression, OriginsTooFarAwayAreRefused) {
   const PlanResult r = planner.plan(s, g, defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_FALSE(r.solutions.empty());
   EXPECT_NEAR(r.solutions.back().poses.back().x, 500001.525, 1e-6);
+}
+
+// occupancy fuzzer, regression-huge-yaw: a map turned by 4.5e279 rad was accepted; adding a
+// heading to that yaw changes nothing in a double, so every pose had the same heading, a goal
+// pose came back as another heading, and the facade's optimum differed from the search's.
+TEST(OccupancyRegression, OriginYawsBeyondAMillionRadiansAreRefused) {
+  const std::int8_t cells[4] = {0, 0, 0, 0};
+  for (double yaw : {4.538e279, -1.1e6}) {
+    try {
+      gridMapFromOccupancy(2, 2, 0.05, 0, 0, yaw, cells, 4, OccupancyConversion());
+      ADD_FAILURE() << yaw;
+    } catch (const LatticeError& e) {
+      EXPECT_NE(std::string(e.what()).find("origin yaw"), std::string::npos) << e.what();
+    }
+    auto map = test::randomMap(16, 4, 0.05, 1, 0, 0);
+    map->origin_yaw = yaw;
+    EXPECT_THROW(LatticePlanner(map, LatticeConfig()), LatticeError) << yaw;
+  }
+  // A yaw many turns round is still an angle: headings round-trip through poses.
+  auto map = test::randomMap(20, 20, 0.05, 1, 0, 0);
+  map->origin_yaw = 2.0 * M_PI * 1000.0 + 0.3;
+  LatticeConfig c;
+  c.robot_radius = 0.05;
+  LatticePlanner planner(map, c);
+  LatticeGraph g(map, c);
+  for (int h = 0; h < g.numHeadings(); ++h) {
+    const Pose2D p = g.stateToPose(7, 9, h);
+    int x = 0, y = 0, k = 0;
+    ASSERT_TRUE(g.poseToState(p, &x, &y, &k));
+    EXPECT_EQ(x, 7);
+    EXPECT_EQ(y, 9);
+    EXPECT_EQ(k, h);
+  }
+}
+
+// occupancy fuzzer, regression-nan-pose-with-goal-options: plan() with GoalOptions turned the
+// poses into states before refusing a non-finite one, and a NaN heading met a float-to-int
+// conversion (undefined behaviour, reported by UBSan). Every bad pose is refused first now.
+TEST(OccupancyRegression, NonFinitePosesWithGoalOptionsAreRefusedBeforeUse) {
+  auto map = test::randomMap(20, 20, 0.05, 1, 0, 0);
+  LatticeConfig c;
+  c.robot_radius = 0.05;
+  LatticePlanner planner(map, c);
+  GoalOptions options;
+  options.tolerance = 0.3;
+  options.any_heading = true;
+  const Pose2D ok{0.5, 0.5, 0.0};
+  const struct {
+    Pose2D start, goal;
+    QueryError expected;
+  } cases[] = {
+      {ok, {0.6, 0.6, NAN}, QueryError::kGoalNotFinite},
+      {{0.5, 0.5, NAN}, ok, QueryError::kStartNotFinite},
+      {ok, {INFINITY, 0.6, 0.0}, QueryError::kGoalNotFinite},
+      {{-1.0, 0.5, NAN}, ok, QueryError::kStartNotFinite},
+      {ok, {5.0, 0.6, 0.0}, QueryError::kGoalOutOfMap},
+  };
+  for (const auto& k : cases) {
+    const PlanResult r = planner.plan(k.start, k.goal, options, defaultConfig(Algorithm::kAStar), SearchLimits());
+    EXPECT_EQ(r.error, k.expected) << r.message;
+    EXPECT_FALSE(r.planned_goal.has_value());
+  }
 }
 
 }  // namespace

@@ -32,6 +32,10 @@ constexpr double kMaxResolution = 1e3;
 /// Largest |origin_x|, |origin_y| (metres; UTM coordinates fit): beyond it a double cannot
 /// place a cell to a millimetre, and poses on the map would be wrong.
 constexpr double kMaxOriginMagnitude = 1e8;
+/// Largest |origin_yaw| (radians): beyond it a double holds an angle too coarsely for headings
+/// (at 4e279 rad, every heading came out the same), and no real map is turned a million
+/// radians (a quaternion gives [-pi, pi]).
+constexpr double kMaxOriginYaw = 1e6;
 
 /// A 2-D map. Cell (0, 0) is the bottom-left cell (nav_msgs/OccupancyGrid order: row-major,
 /// x fastest, row 0 at the origin); (origin_x, origin_y) is that cell's outer corner in the map
@@ -66,7 +70,7 @@ class LatticeError : public std::runtime_error {
 /// Builds a GridMap from OccupancyGrid-style data. Throws LatticeError (kMap) for sizes that are
 /// not positive, data whose length is not width * height, a resolution that is not positive
 /// and finite or outside [kMinResolution, kMaxResolution], a non-finite origin or one farther
-/// than kMaxOriginMagnitude, or a map larger than `max_cells`.
+/// than kMaxOriginMagnitude, a yaw beyond kMaxOriginYaw, or a map larger than `max_cells`.
 GridMap gridMapFromOccupancy(int width, int height, double resolution, double origin_x,
                              double origin_y, double origin_yaw, const std::int8_t* data,
                              std::size_t data_size, const OccupancyConversion& conversion,
