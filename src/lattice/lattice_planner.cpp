@@ -247,14 +247,74 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
   return plan(start, goal, GoalOptions(), algorithm, limits, on_solution);
 }
 
+namespace {
+
+/// Why `stop` stopped something: its cancel flag, else the deadline.
+SearchStatus stoppedStatus(const GridStop& stop) {
+  return stop.cancel != nullptr && stop.cancel->load() ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
+}
+
+/// The state plan() searches to, as `options` ask: the goal pose's state; with any heading, a
+/// collision-free heading of its cell; with a tolerance, the substitute for a goal in
+/// collision. `result` holds checkQuery's verdict on entry; false if it is final (a query
+/// error, or `stop` came first: then result.search.status says which).
+bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal, const GoalOptions& options,
+                const GridStop& stop, std::chrono::steady_clock::time_point call_start, PlanResult& result,
+                LatticeState* t) {
+  g.poseToState(goal, &t->x, &t->y, &t->heading);
+  if (result.error == QueryError::kGoalInCollision && options.any_heading) {
+    // Another heading may be free there; the search takes any.
+    for (int h = 0; h < g.numHeadings() && result.error != QueryError::kNone; ++h) {
+      if (!g.stateValid(t->x, t->y, h)) continue;
+      t->heading = h;
+      result.error = QueryError::kNone;
+      result.message.clear();
+    }
+    if (result.error != QueryError::kNone) result.message += " at every heading";
+  }
+  if (result.error == QueryError::kNone) return true;
+  if (result.error != QueryError::kGoalInCollision || options.tolerance <= 0.0) return false;
+  const GoalChoice c = nearestReachableGoal(g, goal, options.tolerance, s.x, s.y, &stop);
+  result.goal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - call_start).count();
+  char tol[64];
+  std::snprintf(tol, sizeof tol, "%.3f m", options.tolerance);
+  switch (c.outcome) {
+    case GoalChoice::Outcome::kStopped:
+      result.error = QueryError::kNone;
+      result.message.clear();
+      result.search.status = stoppedStatus(stop);
+      return false;
+    case GoalChoice::Outcome::kNoFreePose:
+      result.message += "; no collision-free pose lies within the goal tolerance of " + std::string(tol);
+      return false;
+    case GoalChoice::Outcome::kNoneReachable:
+      result.error = QueryError::kGoalUnreachable;
+      result.message += "; the collision-free poses within the goal tolerance of " + std::string(tol) +
+                        " all lie in free space that the start's does not connect to";
+      return false;
+    case GoalChoice::Outcome::kFound:
+      break;
+  }
+  *t = LatticeState{c.x, c.y, c.heading};
+  result.error = QueryError::kNone;
+  result.goal_substituted = true;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "; planning to the nearest reachable collision-free pose instead, %s, %.3f m and "
+                "%.3f rad from it (goal tolerance %s)", poseText(g.stateToPose(c.x, c.y, c.heading)).c_str(),
+                c.distance, c.heading_difference, tol);
+  result.message += buf;
+  return true;
+}
+
+}  // namespace
+
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
                                 const PlannerConfig& algorithm, const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
-  const double goal_tolerance = goal_options.tolerance;
-  const bool any_heading = goal_options.any_heading;
-  if (!std::isfinite(goal_tolerance) || goal_tolerance < 0.0) {
+  if (!std::isfinite(goal_options.tolerance) || goal_options.tolerance < 0.0) {
     throw std::invalid_argument("the goal tolerance must be finite and >= 0 (metres)");
   }
+  const bool any_heading = goal_options.any_heading;
   const auto call_start = std::chrono::steady_clock::now();
   const LatticeGraph& g = *impl_->graph;
   PlanResult result;
@@ -262,21 +322,6 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   // Only a goal in collision may still be planned for: then both poses are finite and inside
   // the map (and the start valid), which poseToState needs.
   if (result.error != QueryError::kNone && result.error != QueryError::kGoalInCollision) return result;
-  LatticeState s, t;
-  g.poseToState(start, &s.x, &s.y, &s.heading);
-  g.poseToState(goal, &t.x, &t.y, &t.heading);
-  if (result.error == QueryError::kGoalInCollision && any_heading) {
-    // Another heading may be free there; the search takes any.
-    for (int h = 0; h < g.numHeadings() && result.error != QueryError::kNone; ++h) {
-      if (!g.stateValid(t.x, t.y, h)) continue;
-      t.heading = h;
-      result.error = QueryError::kNone;
-      result.message.clear();
-    }
-    if (result.error != QueryError::kNone) result.message += " at every heading";
-  }
-  const bool substitute = result.error == QueryError::kGoalInCollision && goal_tolerance > 0.0;
-  if (result.error != QueryError::kNone && !substitute) return result;
   std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
   // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
   // a big map).
@@ -286,41 +331,9 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
     stop.deadline = call_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                      std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
   }
-  auto stopped_status = [&] {
-    const bool cancelled = limits.cancel != nullptr && limits.cancel->load();
-    return cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
-  };
-  if (substitute) {
-    const GoalChoice c = nearestReachableGoal(g, goal, goal_tolerance, s.x, s.y, &stop);
-    result.goal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - call_start).count();
-    char tol[64];
-    std::snprintf(tol, sizeof tol, "%.3f m", goal_tolerance);
-    switch (c.outcome) {
-      case GoalChoice::Outcome::kStopped:
-        result.error = QueryError::kNone;
-        result.message.clear();
-        result.search.status = stopped_status();
-        return result;
-      case GoalChoice::Outcome::kNoFreePose:
-        result.message += "; no collision-free pose lies within the goal tolerance of " + std::string(tol);
-        return result;
-      case GoalChoice::Outcome::kNoneReachable:
-        result.error = QueryError::kGoalUnreachable;
-        result.message += "; the collision-free poses within the goal tolerance of " + std::string(tol) +
-                          " all lie in free space that the start's does not connect to";
-        return result;
-      case GoalChoice::Outcome::kFound:
-        break;
-    }
-    t = LatticeState{c.x, c.y, c.heading};
-    result.error = QueryError::kNone;
-    result.goal_substituted = true;
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "; planning to the nearest reachable collision-free pose instead, %s, %.3f m and "
-                  "%.3f rad from it (goal tolerance %s)", poseText(g.stateToPose(c.x, c.y, c.heading)).c_str(),
-                  c.distance, c.heading_difference, tol);
-    result.message += buf;
-  }
+  LatticeState s, t;
+  g.poseToState(start, &s.x, &s.y, &s.heading);
+  if (!chooseGoal(g, s, goal, goal_options, stop, call_start, result, &t)) return result;
   result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
   // Algorithms that read only the anchor do not need the inadmissible grids.
   const bool uses_inadmissible = (algorithm.algorithm == Algorithm::kAmhaStar || algorithm.algorithm == Algorithm::kMhaStar) &&
@@ -333,7 +346,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   auto grids = impl_->heuristicsFor(to.x, to.y, table_heading, uses_inadmissible, backward, stop,
                                     &result.heuristic_seconds, &result.heuristic_source);
   if (!grids) {
-    result.search.status = stopped_status();
+    result.search.status = stoppedStatus(stop);
     return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time
   }
   LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward, any_heading);

@@ -482,6 +482,10 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params_.max_memory_mb * 1024.0 * 1024.0);
 
+    lat::GoalOptions goal_options;
+    goal_options.tolerance = r.goal_tolerance;
+    goal_options.any_heading = r.ignore_goal_heading || params_.ignore_goal_heading;
+
     // Each improvement is published as it is found (~solutions, ~plan, ~footprints).
     std::vector<amha::StateId> previous_ids;  // state ids identify a path exactly
     const auto on_solution = [&](const lat::LatticeSolution& solution) {
@@ -493,7 +497,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
         path_pub_.publish(m.path);
         // With a goal tolerance or any goal heading the path may end elsewhere than at the
         // goal pose: mark where it really ends.
-        const bool free_end = r.goal_tolerance > 0.0 || r.ignore_goal_heading || params_.ignore_goal_heading;
+        const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
         const lat::Pose2D& goal_mark = free_end ? solution.poses.back() : g;
         markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, goal_mark, frame, stamp,
                                               params_.marker_spacing));
@@ -502,9 +506,6 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
       res.solutions.push_back(std::move(m));
     };
-    lat::GoalOptions goal_options;
-    goal_options.tolerance = r.goal_tolerance;
-    goal_options.any_heading = r.ignore_goal_heading || params_.ignore_goal_heading;
     const lat::PlanResult result = planner->plan(s, g, goal_options, config, limits, on_solution);
     res.planning_time = result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds;
     if (result.error == lat::QueryError::kNone) {
