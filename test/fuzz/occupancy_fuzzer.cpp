@@ -123,13 +123,7 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   const LatticeState from = backward ? t : s, to = backward ? s : t;
   LatticeProblem problem(g, builder.compute(to.x, to.y, to.heading, inadmissible, 1, backward), from, to,
                          inadmissible ? c.num_inadmissible : 0, backward);
-  test::ValidatorModel model;
-  model.map = map.get();
-  model.primitives = &g.primitives();
-  model.polygon = g.footprint().polygon;
-  model.cost_penalty = c.cost_penalty;
-  model.nominal_speed = c.nominal_speed;
-  model.time_to_turn_45 = c.time_to_turn_45;
+  const test::ValidatorModel model = test::modelFor(g);
   std::vector<Cost> costs;
   Cost previous = kInfiniteCost;
   const SearchResult r = makePlanner(pc)->search(problem, limits, [&](const Solution& sol) {

@@ -69,17 +69,6 @@ LatticeConfig configFor(unsigned seed) {
   return c;
 }
 
-test::ValidatorModel modelFor(const LatticeGraph& g) {
-  test::ValidatorModel m;
-  m.map = &g.map();
-  m.primitives = &g.primitives();
-  m.polygon = g.config().footprint;
-  m.cost_penalty = g.config().cost_penalty;
-  m.nominal_speed = g.config().nominal_speed;
-  m.time_to_turn_45 = g.config().time_to_turn_45;
-  return m;
-}
-
 // Every algorithm, forward and backward, on the search problem itself: every solution is a
 // valid lattice path from s to some heading of the goal's cell, at most certified x optimal;
 // A*'s cost is the optimum.
@@ -91,7 +80,7 @@ TEST(AnyGoalHeading, SolutionsAgainstAnExhaustiveDijkstraToEveryHeading) {
     const auto map = test::randomMap(34, 34, 0.05, seed, 11, seed % 2 ? 150 : 0);
     const LatticeGraph g(map, configFor(seed));
     const HeuristicGridBuilder b(g);
-    const test::ValidatorModel model = modelFor(g);
+    const test::ValidatorModel model = test::modelFor(g);
     std::mt19937 rng(seed * 31);
     for (int q = 0; q < 3; ++q) {
       LatticeState s{0, 0, 0}, t{0, 0, 0};

@@ -122,6 +122,17 @@ Cost bruteForceEdgeCost(const ValidatorModel& m, const LatticeState& from, const
   return base + (base * q + 65535) / 65536;
 }
 
+ValidatorModel modelFor(const LatticeGraph& graph) {
+  ValidatorModel m;
+  m.map = &graph.map();
+  m.primitives = &graph.primitives();
+  m.polygon = graph.footprint().polygon;
+  m.cost_penalty = graph.config().cost_penalty;
+  m.nominal_speed = graph.config().nominal_speed;
+  m.time_to_turn_45 = graph.config().time_to_turn_45;
+  return m;
+}
+
 std::string validatePath(const ValidatorModel& m, const std::vector<LatticeState>& path, Cost claimed_cost) {
   if (path.empty()) return "empty path";
   Cost total = 0;

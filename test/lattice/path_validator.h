@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/lattice_problem.h"
 #include "amha_planner/lattice/motion_primitives.h"
@@ -22,6 +23,9 @@ struct ValidatorModel {
   std::vector<std::array<double, 2>> polygon;  // empty: point robot
   double cost_penalty = 1.0, nominal_speed = 0.4, time_to_turn_45 = 0.6;
 };
+
+/// The model of graph's map, primitives, footprint polygon and cost parameters.
+ValidatorModel modelFor(const LatticeGraph& graph);
 
 /// Does the closed square [i - e, i + 1 + e] x [j - e, j + 1 + e] meet segment p-q (cell units)?
 bool segmentMeetsSquare(double px, double py, double qx, double qy, int i, int j, double e);

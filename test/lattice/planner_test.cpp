@@ -122,17 +122,6 @@ bool randomQuery(const LatticeGraph& g, std::mt19937& rng, LatticeState* s, Latt
   return false;
 }
 
-test::ValidatorModel modelFor(const LatticeGraph& g) {
-  test::ValidatorModel m;
-  m.map = &g.map();
-  m.primitives = &g.primitives();
-  m.polygon = g.config().footprint;
-  m.cost_penalty = g.config().cost_penalty;
-  m.nominal_speed = g.config().nominal_speed;
-  m.time_to_turn_45 = g.config().time_to_turn_45;
-  return m;
-}
-
 std::vector<LatticeState> statesOf(const LatticeProblem& p, const std::vector<StateId>& path) {
   std::vector<LatticeState> out;
   for (StateId s : path) out.push_back(p.state(s));
@@ -151,7 +140,7 @@ void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, Lattic
   auto planner = makePlanner(config);
   SearchLimits limits;
   limits.time_limit_s = time_limit;
-  const test::ValidatorModel model = modelFor(g);
+  const test::ValidatorModel model = test::modelFor(g);
   int count = 0;
   const SearchResult r = planner->search(p, limits, [&](const Solution& sol) {
     ++count;
