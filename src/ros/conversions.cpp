@@ -142,19 +142,24 @@ geometry_msgs::Quaternion quaternionFromYaw(double yaw) {
   return q;
 }
 
+geometry_msgs::PoseStamped poseStampedFromPose2D(const lat::Pose2D& pose, const std::string& frame,
+                                                 const ros::Time& stamp) {
+  geometry_msgs::PoseStamped ps;
+  ps.header.frame_id = frame;
+  ps.header.stamp = stamp;
+  ps.pose.position.x = pose.x;
+  ps.pose.position.y = pose.y;
+  ps.pose.orientation = quaternionFromYaw(pose.theta);
+  return ps;
+}
+
 nav_msgs::Path pathFromPoses(const std::vector<lat::Pose2D>& poses, const std::string& frame,
                              const ros::Time& stamp) {
   nav_msgs::Path path;
   path.header.frame_id = frame;
   path.header.stamp = stamp;
-  path.poses.resize(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    auto& ps = path.poses[i];
-    ps.header = path.header;
-    ps.pose.position.x = poses[i].x;
-    ps.pose.position.y = poses[i].y;
-    ps.pose.orientation = quaternionFromYaw(poses[i].theta);
-  }
+  path.poses.reserve(poses.size());
+  for (const lat::Pose2D& p : poses) path.poses.push_back(poseStampedFromPose2D(p, frame, stamp));
   return path;
 }
 

@@ -520,13 +520,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       return res;
     }
     res.goal_substituted = result.goal_substituted;
-    if (result.planned_goal) {
-      res.planned_goal.header.frame_id = frame;
-      res.planned_goal.header.stamp = stamp;
-      res.planned_goal.pose.position.x = result.planned_goal->x;
-      res.planned_goal.pose.position.y = result.planned_goal->y;
-      res.planned_goal.pose.orientation = quaternionFromYaw(result.planned_goal->theta);
-    }
+    if (result.planned_goal) res.planned_goal = poseStampedFromPose2D(*result.planned_goal, frame, stamp);
     // Told after the outcome: "...; goal (..) is in collision; planning to ... instead".
     const std::string substitution = result.goal_substituted ? "; " + result.message : "";
     const auto status = result.search.status;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/Quaternion.h>
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -51,6 +52,10 @@ bool checkPose(const geometry_msgs::Pose& pose, std::string* why);
 amha::lattice::Pose2D pose2DFromPose(const geometry_msgs::Pose& pose);
 
 geometry_msgs::Quaternion quaternionFromYaw(double yaw);
+
+/// A map-frame pose as a stamped message (frame, stamp).
+geometry_msgs::PoseStamped poseStampedFromPose2D(const amha::lattice::Pose2D& pose, const std::string& frame,
+                                                 const ros::Time& stamp);
 
 /// A path message (frame, stamp) through the given map-frame poses.
 nav_msgs::Path pathFromPoses(const std::vector<amha::lattice::Pose2D>& poses,
