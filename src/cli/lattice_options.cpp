@@ -32,6 +32,15 @@ void LatticeOptions::addTo(CLI::App& app) {
                  "admissible anchor heuristic: euclidean (the paper's) | grid (+ an 8-connected grid "
                  "relaxation) | coarse (+ a block abstraction of the lattice; default)");
   app.add_option("--coarse-block", coarse_block, "cells per block side of the coarse anchor (default 0 = automatic)");
+  app.add_option("--kinematic-radius", kinematic_radius,
+                 "metres: the anchor's obstacle-free kinematic cost-to-go table covers this radius around "
+                 "the goal (0: no table; default 15)");
+  app.add_option("--anchor-connectivity", anchor_connectivity, "moves of the anchor's grid: 8 or 16 (default 16)")
+      ->check(CLI::IsMember({8, 16}));
+  app.add_option("--inadmissible-heuristics", inadmissible_kind,
+                 "kinematic (each the larger of its Dijkstra and the kinematic table; default) or paper (the "
+                 "paper's 8-connected Dijkstras alone)")
+      ->check(CLI::IsMember({"kinematic", "paper"}));
   auto* with_turn = app.add_flag(
       "--turn-term", turn_term,
       "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
@@ -105,6 +114,15 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   c.grid_anchor = o.anchor != "euclidean";
   c.coarse_anchor = o.anchor == "coarse";
   c.coarse_block = o.coarse_block;
+  c.anchor_connectivity = o.anchor_connectivity;
+  c.inadmissible = o.inadmissible_kind == "paper" ? lattice::LatticeConfig::Inadmissible::kPaper
+                                                  : lattice::LatticeConfig::Inadmissible::kKinematic;
+  if (o.kinematic_radius) {
+    if (!std::isfinite(*o.kinematic_radius) || *o.kinematic_radius < 0.0) {
+      throw std::invalid_argument("--kinematic-radius must be a finite number >= 0 (metres)");
+    }
+    c.kinematic_radius = *o.kinematic_radius;
+  }
   c.anchor_turn_term = o.turn_term;  // --no-turn-term is the default (the two exclude each other)
   c.backward_search = o.backward;
   return out;

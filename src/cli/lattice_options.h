@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -29,6 +30,9 @@ struct LatticeOptions {
   int inadmissible = 3;
   std::string anchor = "coarse";
   int coarse_block = 0;
+  std::optional<double> kinematic_radius;
+  int anchor_connectivity = 16;
+  std::string inadmissible_kind = "kinematic";
   bool backward = false;
   bool turn_term = false;  // --no-turn-term, kept for old scripts, only restates the default
 

@@ -113,34 +113,47 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
   needed_[2] = c.num_inadmissible >= 2;
   needed_[3] = c.num_inadmissible >= 3;
   // The anchor's grid: cells the centre may occupy (below inscribed), admissible scale.
-  if (needed_[0]) buildKind(0, kAnchorConnectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1, previous);
+  const int connectivity = c.anchor_connectivity;
+  if (needed_[0]) buildKind(0, connectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1, previous);
   const double s = graph.cheapestUnitsPerCell();
-  if (needed_[1]) {
+  const bool kinematic = c.inadmissible == LatticeConfig::Inadmissible::kKinematic;
+  if (needed_[1] && needed_[0] && kinematic && graph.gridAnchorUnitsPerCell() > 0) {
+    // The point robot's grid is the anchor's (where the centre may be), at full scale.
+    alias_[1] = 0;
+    scale_[1] = s / graph.gridAnchorUnitsPerCell();
+  } else if (needed_[1]) {
     buildKind(1, 8, s, nullptr, kLethalCost - 1, previous);
     // Without inscribed cells the point robot's grid is the anchor's (same cells, same moves)
     // at another scale: compute it once.
-    if (needed_[0] && kAnchorConnectivity == 8 && kinds_[1].level == kinds_[0].level && graph.gridAnchorUnitsPerCell() > 0) {
+    if (needed_[0] && connectivity == 8 && kinds_[1].level == kinds_[0].level && graph.gridAnchorUnitsPerCell() > 0) {
       alias_[1] = 0;
       scale_[1] = s / graph.gridAnchorUnitsPerCell();
     }
   }
-  if (needed_[2]) {
-    buildKind(2, 8, s, &graph.openedFree(0), kLethalCost - 1, previous);
-    if (needed_[1] && kinds_[2].level == kinds_[1].level) {
-      alias_[2] = alias_[1];
-      scale_[2] = scale_[1];
+  // The openings: the paper's 8-connected grids on every cell below lethal; with the kinematic
+  // heuristics, grids like the anchor's (its moves, where the centre may be) at full scale.
+  auto opening = [&](int k, int which) {
+    if (kinematic && needed_[0]) {
+      buildKind(k, connectivity, s, &graph.openedFree(which), kInscribedCost - 1, previous);
+      if (kinds_[k].level == kinds_[0].level) {
+        alias_[k] = 0;
+        scale_[k] = scale_[1];
+      }
+    } else {
+      buildKind(k, 8, s, &graph.openedFree(which), kLethalCost - 1, previous);
+      if (needed_[1] && kinds_[k].level == kinds_[1].level) {
+        alias_[k] = alias_[1];
+        scale_[k] = scale_[1];
+      }
     }
-  }
+  };
+  if (needed_[2]) opening(2, 0);
   if (needed_[3]) {
     if (needed_[2] && graph.openingsEqual()) {
       alias_[3] = alias_[2];
       scale_[3] = scale_[2];
     } else {
-      buildKind(3, 8, s, &graph.openedFree(1), kLethalCost - 1, previous);
-      if (needed_[1] && kinds_[3].level == kinds_[1].level) {
-        alias_[3] = alias_[1];
-        scale_[3] = scale_[1];
-      }
+      opening(3, 1);
     }
   }
   if (c.grid_anchor && c.coarse_anchor) {

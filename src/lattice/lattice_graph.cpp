@@ -48,6 +48,12 @@ void validateConfig(const LatticeConfig& c) {
   if (!(c.nominal_speed > 0.0) || !std::isfinite(c.nominal_speed)) fail(kind, "nominal_speed " + str(c.nominal_speed) + " must be positive");
   if (!(c.time_to_turn_45 >= 0.0) || !std::isfinite(c.time_to_turn_45)) fail(kind, "time_to_turn_45 " + str(c.time_to_turn_45) + " must not be negative");
   if (c.heuristic_cache_size < 1) fail(kind, "heuristic_cache_size must be at least 1");
+  if (c.anchor_connectivity != 8 && c.anchor_connectivity != 16) {
+    fail(kind, "anchor_connectivity " + std::to_string(c.anchor_connectivity) + " is not 8 or 16");
+  }
+  if (!std::isfinite(c.kinematic_radius) || c.kinematic_radius < 0.0 || c.kinematic_radius > 100.0) {
+    fail(kind, "kinematic_radius " + str(c.kinematic_radius) + " m is not in [0, 100]");
+  }
 }
 
 }  // namespace
@@ -77,6 +83,13 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
   buildActions();
   computeClearanceAndOpenings(CellRect{0, 0, map_->width, map_->height});
   computeAnchorScales();
+  if (config_.grid_anchor && config_.kinematic_radius > 0.0 && euclid_per_cell_ > 0.0) {
+    std::vector<KinematicMove> moves;
+    moves.reserve(actions_.size());
+    for (const LatticeAction& a : actions_) moves.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
+    const int radius = static_cast<int>(std::ceil(config_.kinematic_radius / map_->resolution - 1e-9));
+    kinematic_ = KinematicTables::shared(moves, primitives_.heading_angles, euclid_per_cell_, std::max(1, radius));
+  }
 }
 
 LatticeGraph::LatticeGraph(const LatticeGraph& previous, std::shared_ptr<const GridMap> map,
@@ -309,7 +322,7 @@ void LatticeGraph::computeAnchorScales() {
   // change, |theta - theta_goal|, obeys the triangle inequality on the circle. Adding
   // b x |theta - theta_goal| keeps either anchor consistent if b x dtheta <= base - s |d| (resp.
   // base - k w) for every action: the cost of an edge then covers both terms' decrease.
-  const std::vector<GridMove> moves = gridMoves(kAnchorConnectivity);
+  const std::vector<GridMove> moves = gridMoves(config_.anchor_connectivity);
   const double inf = std::numeric_limits<double>::infinity();
   double euclid = inf, grid = inf;
   std::vector<double> walks(actions_.size(), 0.0);

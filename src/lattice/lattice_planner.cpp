@@ -349,7 +349,21 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
     result.search.status = stoppedStatus(stop);
     return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time
   }
-  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward, any_heading);
+  // The kinematic table at the goal (backward: from the start), built on first use.
+  KinematicLookup kinematic;
+  if (g.kinematicTables()) {
+    double seconds = 0.0;
+    kinematic = g.kinematicTables()->lookup(
+        backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, table_heading, &stop,
+        &seconds);
+    result.heuristic_seconds += seconds;
+    if (!kinematic.valid()) {
+      result.search.status = stoppedStatus(stop);
+      return result;
+    }
+  }
+  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward, any_heading,
+                         kinematic);
   // Solution paths run start ... goal; an any-heading goal's virtual state ends them.
   auto lattice_path = [&](std::vector<StateId>& path) {
     if (backward) std::reverse(path.begin(), path.end());
@@ -371,6 +385,25 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   for (Solution& sol : result.search.solutions) lattice_path(sol.path);
   if (any_heading && !result.solutions.empty()) result.planned_goal->theta = result.solutions.back().poses.back().theta;
   return result;
+}
+
+bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) {
+  const auto& tables = impl_->graph->kinematicTables();
+  if (!tables) return true;
+  GridStop stop;
+  stop.cancel = limits.cancel;
+  if (limits.time_limit_s < 1e9) {
+    stop.deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
+  }
+  const auto direction = impl_->graph->config().backward_search ? KinematicTables::Direction::kFromStart
+                                                                 : KinematicTables::Direction::kToGoal;
+  return tables->prepare(direction, &stop);
+}
+
+std::size_t LatticePlanner::kinematicTableBytes() const {
+  const auto& tables = impl_->graph->kinematicTables();
+  return tables ? tables->bytes() : 0;
 }
 
 std::vector<std::array<double, 2>> LatticePlanner::footprintAt(const Pose2D& pose) const {

@@ -9,9 +9,11 @@ namespace lattice {
 
 LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
                                LatticeState start, LatticeState goal, int num_inadmissible, bool backward,
-                               bool any_goal_heading)
+                               bool any_goal_heading, KinematicLookup kinematic)
     : graph_(graph),
       heur_(std::move(heuristics)),
+      kinematic_(std::move(kinematic)),
+      kinematic_inadmissible_(kinematic_.valid() && graph.config().inadmissible == LatticeConfig::Inadmissible::kKinematic),
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
       backward_(backward),
       width_(graph.width()),
@@ -22,6 +24,25 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   for (int k = 1; k <= num_inadmissible_; ++k) {
     if (grids_[k] == nullptr) num_inadmissible_ = k - 1;  // the planner did not build that grid
   }
+  // A grid equal to an earlier one (the same distances at the same scale, e.g. the openings of
+  // a robot that fits everywhere its centre does) would be a second copy of one heuristic. The
+  // paper's set keeps its copies, so that its results stay as they were.
+  const bool dedupe = graph.config().inadmissible == LatticeConfig::Inadmissible::kKinematic;
+  int kept = 0;
+  for (int k = 1; k <= num_inadmissible_; ++k) {
+    bool copy = false;
+    if (!dedupe) {
+      grids_[++kept] = grids_[k];
+      scale_[kept] = heur_->scale[k];
+      continue;
+    }
+    for (int j = 1; j <= kept; ++j) copy = copy || (grids_[j] == grids_[k] && scale_[j] == heur_->scale[k]);
+    if (copy) continue;
+    ++kept;
+    grids_[kept] = grids_[k];
+    scale_[kept] = heur_->scale[k];
+  }
+  num_inadmissible_ = kept;
   tiles_x_ = (graph.width() + kTile - 1) / kTile;
   const int tiles_y = (graph.height() + kTile - 1) / kTile;
   pages_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y, nullptr);
@@ -137,6 +158,7 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading) const {
     if (v == kUnreachable) return kInfiniteHeuristic;  // the abstraction proves it unreachable
     c = v;
   }
+  if (kinematic_.valid()) c = std::max<double>(c, kinematic_.value(x - goal_x_, y - goal_y_, heading));
   return static_cast<HeuristicValue>(std::min(std::max({a, b, c}), 4e9));
 }
 
@@ -147,10 +169,14 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
   }
   const LatticeState st = state(s);
   h[0] = anchor(st.x, st.y, st.heading);
+  // The inadmissible ones: each Dijkstra, with the kinematic table (kKinematic) the larger of
+  // it and the table, as Smac combines its obstacle and distance heuristics.
+  const double k =
+      count > 1 && kinematic_inadmissible_ ? kinematic_.value(st.x - goal_x_, st.y - goal_y_, st.heading) : 0.0;
   for (std::size_t i = 1; i < count; ++i) {
     const std::uint32_t g = grids_[i]->at(st.x, st.y);
     h[i] = g == kUnreachable ? kInfiniteHeuristic
-                             : static_cast<HeuristicValue>(std::min(g * heur_->scale[i] / kGridFraction, 4e9));
+                             : static_cast<HeuristicValue>(std::min(std::max(k, g * scale_[i] / kGridFraction), 4e9));
   }
 }
 

@@ -40,9 +40,6 @@ struct GridMove {
 /// The 8 neighbours (connectivity 8) or the 8 neighbours and the 8 knight moves (16).
 std::vector<GridMove> gridMoves(int connectivity);
 
-/// Connectivity of the anchor's grid.
-constexpr int kAnchorConnectivity = 8;
-
 /// Shortest walk (in cells of length) from (0, 0) to `to` using `moves` whose required cells
 /// all lie in `cells`; infinity if there is none.
 double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/kinematic_table.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/motion_primitives.h"
 
@@ -119,6 +120,11 @@ class LatticeGraph {
   double euclidTurnUnitsPerRadian() const { return euclid_turn_per_rad_; }
   double gridTurnUnitsPerRadian() const { return grid_turn_per_rad_; }
 
+  /// The obstacle-free kinematic tables of this graph's actions (null when
+  /// LatticeConfig::kinematic_radius is 0 or the anchor is the Euclidean one): shared with every
+  /// graph that has the same actions, whatever its map.
+  const std::shared_ptr<KinematicTables>& kinematicTables() const { return kinematic_; }
+
   /// Per cell, its clearance class: how many of the distinct sweep radii (ascending) the
   /// distance from its centre to the nearest lethal/unknown cell centre exceeds. The search
   /// asks only "clearance > sweep radius", which a byte answers as well as the distance (a
@@ -170,6 +176,7 @@ class LatticeGraph {
   bool openings_equal_ = false;
   double euclid_per_cell_ = 0.0, grid_anchor_per_cell_ = 0.0, cheapest_per_cell_ = 0.0;
   double euclid_turn_per_rad_ = 0.0, grid_turn_per_rad_ = 0.0;
+  std::shared_ptr<KinematicTables> kinematic_;
 };
 
 }  // namespace lattice

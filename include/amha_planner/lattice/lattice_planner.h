@@ -110,9 +110,16 @@ struct LatticeConfig {
   /// and c the worst cost of the cells the robot's centre crosses. cost_penalty = 252 gives
   /// SBPL's cost x (c + 1). See docs/lattice.md.
   double cost_penalty = 1.0;
-  /// Inadmissible heuristics (0..3): 8-connected Dijkstra for a point robot, then the same on
-  /// maps with passages narrower than the inscribed / circumscribed diameter blocked.
+  /// Inadmissible heuristics (0..3): a Dijkstra for a point robot, then Dijkstras on maps with
+  /// passages narrower than the inscribed / circumscribed diameter blocked (the paper's three).
   int num_inadmissible = 3;
+  /// How the inadmissible heuristics are made (kinematic_table.h for the table):
+  ///  - kKinematic: each is the larger of its Dijkstra and the anchor's kinematic table, as Nav2's
+  ///    Smac combines its obstacle and distance heuristics; the point robot's Dijkstra is the
+  ///    anchor's grid at full Euclidean scale (no extra Dijkstra);
+  ///  - kPaper: the paper's 8-connected Dijkstras alone, at the Euclidean scale.
+  enum class Inadmissible { kKinematic, kPaper };
+  Inadmissible inadmissible = Inadmissible::kKinematic;
 
   // ---- Added after the API freeze (defaults keep the original behaviour). ----
   /// Robot speed (m/s) and the time to turn 45 degrees in place (s): SBPL's nominalvel and
@@ -124,12 +131,21 @@ struct LatticeConfig {
   /// Dijkstra whose step costs are scaled so it is a relaxation of the lattice); false = the
   /// Euclidean distance alone (the paper's anchor). Both are admissible and consistent.
   bool grid_anchor = true;
+  /// Moves of the anchor's grid: 8 (the neighbours) or 16 (also the knight moves, whose
+  /// directions are those of the usual 16-heading lattices: the grid's scale, and so its
+  /// distances, then fall less short of the lattice's; see docs/lattice.md).
+  int anchor_connectivity = 16;
   /// With grid_anchor: also take the exact cost-to-go on a block abstraction of the lattice
   /// (cells grouped into coarse_block x coarse_block blocks; 0 = automatic: at most ~250k
   /// abstract states, see coarse_lattice.h), which knows what turning costs. Admissible and
   /// consistent.
   bool coarse_anchor = true;
   int coarse_block = 0;
+  /// With grid_anchor: also take the obstacle-free kinematic cost-to-go (the exact cost of the
+  /// cheapest primitive sequence on an empty map, kinematic_table.h) within this radius of the
+  /// goal, in metres (0: off). Admissible and consistent; the tables are built once per
+  /// primitive set and shared by every query and map.
+  double kinematic_radius = 15.0;
   /// Add to the Euclidean and grid parts of the anchor a turning term: the cheapest cost of
   /// turning to the goal's heading (admissible and consistent either way). Off by default:
   /// under an inflation weight it draws the search towards states that face the goal's heading
@@ -266,6 +282,15 @@ class LatticePlanner {
   PlanResult plan(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
                   const PlannerConfig& algorithm, const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});
+
+  /// Builds, in parallel threads, the kinematic tables (kinematic_table.h) that queries in the
+  /// configured direction need, so that no query pays for them. They are shared by every
+  /// planner with the same primitives and cost model, so only the first planner builds them.
+  /// Honours limits' cancel flag and time budget: false if stopped first (a later query then
+  /// builds what is missing). Returns true at once when there are no tables.
+  bool prepareKinematicTables(const SearchLimits& limits = SearchLimits());
+  /// Bytes of the kinematic tables built so far (shared; 0 without tables).
+  std::size_t kinematicTableBytes() const;
 
   /// The footprint polygon placed at a pose (map frame), for drawing and markers.
   std::vector<std::array<double, 2>> footprintAt(const Pose2D& pose) const;

@@ -31,9 +31,11 @@ class LatticeProblem final : public SearchProblem {
   /// runs to (backward: from) a virtual state joined to each of them by an edge of cost 0, whose
   /// id virtualGoal() gives; heuristics must then be for the goal cell with kAnyHeading (the
   /// coarse distances to any of its headings), and the lattice goal's heading is unused.
+  /// kinematic: the obstacle-free kinematic table placed at the lattice goal (backward: the
+  /// lattice start), KinematicTables::lookup; an invalid lookup leaves it out of the anchor.
   LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
                  LatticeState start, LatticeState goal, int num_inadmissible, bool backward = false,
-                 bool any_goal_heading = false);
+                 bool any_goal_heading = false, KinematicLookup kinematic = {});
   ~LatticeProblem() override;
 
   StateId start() const override { return start_; }
@@ -59,16 +61,20 @@ class LatticeProblem final : public SearchProblem {
   StateId id(int x, int y, int heading);
   /// The cheapest valid action from `from` that ends in `to` (nullptr if none), and its cost.
   const LatticeAction* actionBetween(StateId from, StateId to, Cost* cost) const;
-  /// Anchor value (admissible and consistent): with the grid anchor, the larger of
-  /// floor(Euclidean + turning term) and floor(grid + turning term); without it, the Euclidean
-  /// distance alone (the paper's anchor). See LatticeGraph::computeAnchorScales.
+  /// Anchor value (admissible and consistent): with the grid anchor, the largest of
+  /// floor(Euclidean + turning term), floor(grid + turning term), the block abstraction's
+  /// cost-to-go and the kinematic table's value; without it, the Euclidean distance alone (the
+  /// paper's anchor). See LatticeGraph::computeAnchorScales and kinematic_table.h.
   HeuristicValue anchor(int x, int y, int heading) const;
 
  private:
   const LatticeGraph& graph_;
   std::shared_ptr<const GoalHeuristics> heur_;
-  const DistanceGrid* grids_[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
+  const DistanceGrid* grids_[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};  // distinct ones
+  double scale_[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};                                  // their scales
   const std::uint32_t* coarse_ = nullptr;
+  KinematicLookup kinematic_;
+  bool kinematic_inadmissible_ = false;  // the inadmissible heuristics take the table too
   int num_inadmissible_;
   bool backward_ = false;
   int width_, headings_;
