@@ -43,6 +43,14 @@ int planMain(int argc, char** argv) {
   app.add_option("--dw1", dw1, "decrement of w1 per iteration");
   app.add_option("--dw2", dw2, "decrement of w2 per iteration");
   cli::addScheduleOption(app, &schedule);
+  std::string weights_name;
+  double certified_ratio = NAN, certified_split = NAN, final_gap = NAN;
+  app.add_option("--weights", weights_name,
+                 "anytime weight schedule of amha/ara: certified (from the last certified bound) or decrement "
+                 "(the paper's: w -= dw)");
+  app.add_option("--certified-ratio", certified_ratio, "certified schedule: next bound = 1 + ratio x (c - 1)");
+  app.add_option("--certified-split", certified_split, "certified schedule: w1 = bound^split, w2 = bound / w1");
+  app.add_option("--final-gap", final_gap, "certified schedule: prove optimality once c <= 1 + gap");
   app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
   app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
   app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
@@ -68,6 +76,13 @@ int planMain(int argc, char** argv) {
   if (!std::isnan(dw1)) pc.dw1 = dw1;
   if (!std::isnan(dw2)) pc.dw2 = dw2;
   pc.schedule = schedule;
+  if (!weights_name.empty() && !parseWeightSchedule(weights_name, &pc.weight_schedule)) {
+    std::cerr << "amha plan: --weights must be certified or decrement, not '" << weights_name << "'\n";
+    return kExitUsage;
+  }
+  if (!std::isnan(certified_ratio)) pc.certified_ratio = certified_ratio;
+  if (!std::isnan(certified_split)) pc.certified_split = certified_split;
+  if (!std::isnan(final_gap)) pc.final_gap = final_gap;
   try {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {
@@ -86,7 +101,7 @@ int planMain(int argc, char** argv) {
   LoadedLattice loaded;
   lattice::Pose2D start, goal;
   std::unique_ptr<lattice::LatticePlanner> planner;
-  double setup_s = 0.0;
+  double setup_s = 0.0, table_s = 0.0;
   try {
     loaded = loadLattice(lo);
     if (start_text.empty() || goal_text.empty()) {
@@ -100,6 +115,11 @@ int planMain(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config));
     setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto t1 = std::chrono::steady_clock::now();
+    SearchLimits table_limits;
+    table_limits.time_limit_s = time_limit;
+    planner->prepareKinematicTables(table_limits);
+    table_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha plan: " << e.what() << "\n";
     return exitCodeFor(e);
@@ -109,8 +129,9 @@ int planMain(int argc, char** argv) {
   }
   const lattice::GridMap& map = *loaded.map;
   std::printf("map %s: %d x %d cells of %.3f m; algorithm %s; planner setup (primitives, footprint sweeps, "
-              "clearance, openings) %.3f s\n", lo.map_file.c_str(), map.width, map.height, map.resolution,
-              algorithmName(algorithm), setup_s);
+              "clearance, openings) %.3f s; kinematic tables %.3f s, %.1f MB\n", lo.map_file.c_str(), map.width,
+              map.height, map.resolution, algorithmName(algorithm), setup_s, table_s,
+              planner->kinematicTableBytes() / 1e6);
   std::printf("start (%.3f, %.3f, %.3f)  goal (%.3f, %.3f, %.3f)\n", start.x, start.y, start.theta, goal.x, goal.y,
               goal.theta);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -105,14 +106,47 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
       break;
     }
     ++iteration_;
-    if (!prepareNextIteration(std::max(w1_ - opt_.dw1, 1.0), std::max(w2_ - opt_.dw2, 1.0)) ||
-        slowLimitCheck()) {
+    double next_w1 = 1.0, next_w2 = 1.0;
+    nextWeights(result_.solutions.back().certified_bound, &next_w1, &next_w2);
+    if (!prepareNextIteration(next_w1, next_w2) || slowLimitCheck()) {
       status = stop_;
       break;
     }
   }
   finish(status);
   return std::move(result_);
+}
+
+void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) {
+  if (opt_.weight_schedule == WeightSchedule::kCertified) {
+    // Below the bound already earned, so that the iteration must expand (and may improve the
+    // path): its stop test g(goal) <= w2 min(g + w1 h0) fails while w1 w2 < cost / LB.
+    const double c = std::min(certified, w1_ * w2_);
+    const double bound = c - 1.0 <= opt_.final_gap ? 1.0 : 1.0 + opt_.certified_ratio * (c - 1.0);
+    *next_w1 = std::clamp(std::pow(bound, opt_.certified_split), 1.0, w1_);
+    *next_w2 = std::clamp(bound / *next_w1, 1.0, w2_);
+    return;
+  }
+  // The paper's decrements. An iteration whose stop test already holds after the re-keying
+  // (g(goal) <= w2 min over OPEN_0 u INCONS of g + w1 h0) expands nothing and reports the same
+  // path again: it is skipped (the search after it is the same), so that a large w1 does not
+  // report millions of copies. members_ is OPEN_0 u INCONS (collectOpen0AndIncons).
+  const Cost goal_g = g(problem_->goal());
+  auto stopsAtOnce = [&](double w1, double w2) {
+    double min_key = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < members_.size(); ++k) {
+      const StateId s = members_[k];
+      min_key = std::min(min_key, static_cast<double>(g(s)) + w1 * static_cast<double>(h(s, 0)));
+    }
+    return static_cast<double>(goal_g) <= w2 * min_key;
+  };
+  double w1 = std::max(w1_ - opt_.dw1, 1.0), w2 = std::max(w2_ - opt_.dw2, 1.0);
+  while ((w1 > 1.0 || w2 > 1.0) && stopsAtOnce(w1, w2)) {
+    w1 = std::max(w1 - opt_.dw1, 1.0);
+    w2 = std::max(w2 - opt_.dw2, 1.0);
+  }
+  *next_w1 = w1;
+  *next_w2 = w2;
 }
 
 void MhaEngine::generate(StateId s) {

@@ -19,6 +19,8 @@ namespace detail {
 struct MhaEngineOptions {
   double w1 = 5.0, w2 = 5.0;    // initial weights
   double dw1 = 0.5, dw2 = 0.5;  // decrements per iteration
+  WeightSchedule weight_schedule = WeightSchedule::kDecrement;
+  double certified_ratio = 0.5, certified_split = 1.0, final_gap = 0.002;
   bool anytime = true;          // false: one ImprovePath (MHA*, weighted A*, A*)
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
@@ -46,6 +48,8 @@ class MhaEngine : public SearchBase {
   void expand(StateId s, std::size_t queue);
   void generate(StateId s);  // computes and caches the heuristics of a new state
   bool prepareNextIteration(double next_w1, double next_w2);  // false if a limit stopped it
+  // The next iteration's weights (WeightSchedule), given the last solution's certified bound.
+  void nextWeights(double certified, double* next_w1, double* next_w2);
   void resetQueues();  // empties every queue and picks buckets or heaps for the current w1
   void clearClosed();  // also empties INCONS
   // Collects OPEN_0 u INCONS (finite h0) into members_, in id order, and returns the minimum

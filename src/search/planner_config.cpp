@@ -50,6 +50,21 @@ bool parseSchedule(const std::string& name, QueueSchedule* out) {
   return true;
 }
 
+const char* weightScheduleName(WeightSchedule s) {
+  return s == WeightSchedule::kCertified ? "certified" : "decrement";
+}
+
+bool parseWeightSchedule(const std::string& name, WeightSchedule* out) {
+  if (name == "decrement") {
+    *out = WeightSchedule::kDecrement;
+  } else if (name == "certified") {
+    *out = WeightSchedule::kCertified;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 const char* statusName(SearchStatus s) {
   switch (s) {
     case SearchStatus::kProvenOptimal: return "proven_optimal";

@@ -56,6 +56,22 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
   o.schedule_seed = c.schedule_seed;
   o.dw1 = o.dw2 = 0.0;
   o.w1 = o.w2 = 1.0;
+  o.weight_schedule = c.weight_schedule;
+  o.certified_ratio = c.certified_ratio;
+  o.certified_split = c.certified_split;
+  o.final_gap = c.final_gap;
+  const bool certified = c.weight_schedule == WeightSchedule::kCertified;
+  if (certified) {
+    if (!(c.certified_ratio > 0.0 && c.certified_ratio < 1.0)) {
+      throw std::invalid_argument("certified_ratio must be in (0, 1), got " + std::to_string(c.certified_ratio));
+    }
+    if (!(c.certified_split >= 0.0 && c.certified_split <= 1.0)) {
+      throw std::invalid_argument("certified_split must be in [0, 1], got " + std::to_string(c.certified_split));
+    }
+    if (!(c.final_gap >= 0.0 && c.final_gap < 1e6)) {
+      throw std::invalid_argument("final_gap must be a finite number >= 0, got " + std::to_string(c.final_gap));
+    }
+  }
   o.anytime = false;
   o.max_inadmissible = 0;
   switch (c.algorithm) {
@@ -66,7 +82,7 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
       checkWeight(c.w2, "w2");
       checkDecrement(c.dw1, "dw1");
       checkDecrement(c.dw2, "dw2");
-      if ((c.w1 > 1.0 && c.dw1 <= 0.0) || (c.w2 > 1.0 && c.dw2 <= 0.0)) {
+      if (!certified && ((c.w1 > 1.0 && c.dw1 <= 0.0) || (c.w2 > 1.0 && c.dw2 <= 0.0))) {
         throw std::invalid_argument(
             "A-MHA* needs dw1 > 0 (if w1 > 1) and dw2 > 0 (if w2 > 1) to reach bound 1");
       }
@@ -83,7 +99,7 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
     case Algorithm::kAraStar:
       checkWeight(c.w1, "epsilon (w1)");
       checkDecrement(c.dw1, "epsilon decrement (dw1)");
-      if (c.w1 > 1.0 && c.dw1 <= 0.0) {
+      if (!certified && c.w1 > 1.0 && c.dw1 <= 0.0) {
         throw std::invalid_argument("ARA* needs an epsilon decrement dw1 > 0 to reach 1");
       }
       o.w1 = c.w1; o.dw1 = c.dw1;

@@ -34,6 +34,22 @@ enum class QueueSchedule { kRoundRobin, kDts };
 const char* scheduleName(QueueSchedule s);
 bool parseSchedule(const std::string& name, QueueSchedule* out);
 
+/// How the anytime algorithms (A-MHA*, ARA*) choose the next iteration's weights.
+///  - kDecrement: the paper's Algorithm 1 (line 35): w1 -= dw1, w2 -= dw2, down to 1. Iterations
+///    whose bound w1 * w2 is not below the last solution's certified bound cannot improve on the
+///    guarantee already proven; they are skipped (the weights jump over them), which changes
+///    no path, only how many identical solutions are reported.
+///  - kCertified: from the certified bound c of the last solution, the next bound is
+///    B = 1 + certified_ratio x (c - 1) (or 1 once c <= 1 + final_gap), below c so that the
+///    iteration can improve on the path, with w1 = B^certified_split and w2 = B / w1 (never
+///    above their current values). Improvements then arrive between the first path and the
+///    proof, at bounds the previous solution has earned, rather than along a fixed ladder whose
+///    last step (2.25 -> 1) is the whole proof.
+enum class WeightSchedule { kDecrement, kCertified };
+/// "decrement", "certified".
+const char* weightScheduleName(WeightSchedule s);
+bool parseWeightSchedule(const std::string& name, WeightSchedule* out);
+
 enum class SearchStatus {
   kProvenOptimal,   ///< the last solution is optimal (bound 1 reached or certified)
   kBoundReached,    ///< a one-shot algorithm (MHA*, weighted A*) met its requested bound
@@ -65,6 +81,12 @@ struct PlannerConfig {
   double w2 = 5.0;   ///< inadmissible-vs-anchor factor (initial); bound is w1 * w2 = 25
   double dw1 = 0.5;  ///< decrement of w1 per iteration
   double dw2 = 0.5;  ///< decrement of w2 per iteration
+  /// How the weights fall between iterations (kDecrement uses dw1, dw2; kCertified the three
+  /// parameters below).
+  WeightSchedule weight_schedule = WeightSchedule::kDecrement;
+  double certified_ratio = 0.5;   ///< in (0, 1): the share of c - 1 the next bound keeps
+  double certified_split = 1.0;   ///< in [0, 1]: the exponent of the bound given to w1
+  double final_gap = 0.002;       ///< >= 0: below 1 + this, the next iteration is the proof
   /// Use at most this many inadmissible heuristics of the problem (all by default).
   std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
   /// Order in which the inadmissible queues are tried (A-MHA*, MHA*).
