@@ -278,7 +278,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
       const std::uint32_t w = moveCost(kind, i, m);
       if (w == kUnreachable) continue;
       const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + off[m]);
-      // Saturating before the comparison, as dijkstra8 does: a distance past kUnreachable - 1
+      // Saturating before the comparison, as dijkstraUnrolled does: a distance past kUnreachable - 1
       // is still a reachable cell.
       const std::uint32_t v =
           static_cast<std::uint32_t>(std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
@@ -291,13 +291,16 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
   return true;
 }
 
-// The 8-connected case, unrolled: the four side neighbours are read once and serve as the
-// corner cells of the diagonal moves. Same result as the generic loop (moves in gridMoves(8)
-// order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1)).
+// The 8- and 16-connected cases, unrolled: the eight neighbours are read once and serve as the
+// side cells of the diagonal moves and the intermediate cells of the knight moves. Same result
+// as the generic loop (moves in gridMoves() order: (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1)
+// (0,1) (1,1), then the knight moves (2,1) (1,2) (-1,2) (-2,1) (-2,-1) (-1,-2) (1,-2) (2,-1),
+// whose segments cross two cells between their ends, e.g. (1,0) and (1,1) for (2,1)).
 constexpr std::size_t kPrefetchAhead = 4;
 
-template <class Queue>
-bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const {
+template <bool kKnights, class Queue>
+bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
+                                            const GridStop* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -353,6 +356,25 @@ bool HeuristicGridBuilder::dijkstra8(const Kind& kind, std::uint32_t* dist, Queu
     diagonal(i - pw + 1, ls, le, s_se);
     diagonal(i + pw - 1, ln, lw, s_nw);
     diagonal(i + pw + 1, ln, le, s_ne);
+    if constexpr (kKnights) {
+      // Both cells between the ends are required (255 stays above every class, as above).
+      const unsigned lsw = level[i - pw - 1], lse = level[i - pw + 1], lnw = level[i + pw - 1], lne = level[i + pw + 1];
+      auto knight = [&](std::int64_t dx, std::int64_t dy, unsigned a, unsigned b, int m) {
+        const unsigned mid = std::max(a, b);
+        if (mid == 255) return;
+        const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + dy * pw + dx);
+        const unsigned l = level[j];
+        if (l != 255) relax(j, std::max({c0, mid, l}), step + m * 256);
+      };
+      knight(2, 1, le, lne, 8);
+      knight(1, 2, ln, lne, 9);
+      knight(-1, 2, ln, lnw, 10);
+      knight(-2, 1, lw, lnw, 11);
+      knight(-2, -1, lw, lsw, 12);
+      knight(-1, -2, ls, lsw, 13);
+      knight(1, -2, ls, lse, 14);
+      knight(2, -1, le, lse, 15);
+    }
   }
   return true;
 }
@@ -367,11 +389,13 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   std::uint32_t* dist = grid.dist.data();
   const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
   if (kind.level[goal] == 255) return true;
-  const bool eight = kind.move_offsets.size() == 8;
+  const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
   // Every finite distance is popped, the largest last.
   auto search = [&](auto& queue) {
     queue.push(0, goal);
-    const bool complete = eight ? dijkstra8(kind, dist, queue, stop) : dijkstra(kind, dist, queue, stop);
+    const bool complete = eight ? dijkstraUnrolled<false>(kind, dist, queue, stop)
+                          : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop)
+                                    : dijkstra(kind, dist, queue, stop);
     grid.max_distance = queue.lastPopped();
     return complete;
   };
@@ -491,7 +515,8 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   };
   detail::RadixHeap queue;
   auto propagate = [&](detail::RadixHeap& q) {
-    return nm == 8 ? dijkstra8(kind, dist, q, stop) : dijkstra(kind, dist, q, stop);
+    return nm == 8 ? dijkstraUnrolled<false>(kind, dist, q, stop)
+                   : nm == 16 ? dijkstraUnrolled<true>(kind, dist, q, stop) : dijkstra(kind, dist, q, stop);
   };
   if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1), along(-1), propagate, stop,
                                queue)) {

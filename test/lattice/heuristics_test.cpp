@@ -98,6 +98,81 @@ TEST(HeuristicGridTest, PointRobotGridEqualsReferenceDijkstra) {
   }
 }
 
+// The same with any moves (gridMoves' required cells: all of them, or for a diagonal the two
+// ends and one side cell), written independently of the builder's unrolled loops.
+std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, double units, double pen, int max_class,
+                                             const std::vector<GridMove>& moves) {
+  const int w = m.width, h = m.height;
+  auto passable = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class; };
+  std::vector<std::uint64_t> d(static_cast<std::size_t>(w) * h, UINT64_MAX);
+  using Item = std::pair<std::uint64_t, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  if (!passable(gx, gy)) return d;
+  d[gy * w + gx] = 0;
+  q.push({0, gy * w + gx});
+  while (!q.empty()) {
+    const auto [dist, i] = q.top();
+    q.pop();
+    if (dist != d[i]) continue;
+    const int x = i % w, y = i / w;
+    for (const GridMove& mv : moves) {
+      int c = -1, side = 256;
+      bool ok = true;
+      for (const CellOffset& r : mv.required) {
+        const bool end = (r.dx == 0 && r.dy == 0) || (r.dx == mv.dx && r.dy == mv.dy);
+        const int cx = x + r.dx, cy = y + r.dy;
+        if (end || !mv.either_side) {
+          if (!passable(cx, cy)) ok = false;
+          else c = std::max<int>(c, m.at(cx, cy));
+        } else if (passable(cx, cy)) {
+          side = std::min<int>(side, m.at(cx, cy));
+        }
+      }
+      if (!ok || (mv.either_side && side == 256)) continue;
+      if (mv.either_side) c = std::max(c, side);
+      const double step = units * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+      const std::uint64_t nd = dist + static_cast<std::uint64_t>(std::floor(step));
+      const int j = (y + mv.dy) * w + (x + mv.dx);
+      if (nd < d[j]) {
+        d[j] = nd;
+        q.push({nd, j});
+      }
+    }
+  }
+  return d;
+}
+
+// The anchor's grid, 8- and 16-connected (the builder's unrolled loops), against the reference.
+TEST(HeuristicGridTest, AnchorGridEqualsReferenceDijkstraForBothConnectivities) {
+  for (const int connectivity : {8, 16}) {
+    for (unsigned seed : {4u, 5u, 6u}) {
+      auto map = test::randomMap(70, 50, 0.05, seed, 25, seed == 6 ? 0 : 200);
+      const int gx = 35, gy = 25;
+      map->cost[gy * map->width + gx] = 0;
+      for (int k = 0; k < 60; ++k) map->cost[(seed * 7919 + k * 104729) % map->cost.size()] = kInscribedCost;
+      LatticeConfig c;
+      c.turning_radius = 0.2;
+      c.robot_radius = 0.0;
+      c.cost_penalty = seed == 5 ? 252.0 : 3.0;
+      c.anchor_connectivity = connectivity;
+      c.coarse_anchor = false;
+      c.num_inadmissible = 0;
+      LatticeGraph g(map, c);
+      HeuristicGridBuilder b(g);
+      const DistanceGrid grid = b.computeOne(GridKind::kAnchor, gx, gy);
+      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorUnitsPerCell(), c.cost_penalty, kInscribedCost - 1,
+                                          gridMoves(connectivity));
+      for (int y = 0; y < map->height; ++y) {
+        for (int x = 0; x < map->width; ++x) {
+          const std::uint64_t r = ref[y * map->width + x];
+          const std::uint32_t v = grid.at(x, y);
+          ASSERT_EQ(v, r == UINT64_MAX ? kUnreachable : r) << connectivity << "-connected, seed " << seed << " at " << x << "," << y;
+        }
+      }
+    }
+  }
+}
+
 struct LatticeFixture {
   std::shared_ptr<GridMap> map;
   std::unique_ptr<LatticeGraph> graph;

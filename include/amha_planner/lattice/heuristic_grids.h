@@ -158,8 +158,9 @@ class HeuristicGridBuilder {
   // Dijkstra from the cells already in `queue` (with their distances in dist).
   template <class Queue>
   bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
-  template <class Queue>
-  bool dijkstra8(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
+  /// The 8-connected (kKnights false) and 16-connected moves, unrolled.
+  template <bool kKnights, class Queue>
+  bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;
