@@ -18,6 +18,7 @@ amha_add_gtest(amha_search_tests
     test/search/realloc_vector_test.cpp
     test/search/indexed_heap_test.cpp
     test/search/optimality_test.cpp
+    test/search/weight_schedule_test.cpp
     test/search/limits_test.cpp
     test/search/monotone_cost_test.cpp
     test/search/dts_schedule_test.cpp

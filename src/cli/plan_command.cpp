@@ -51,6 +51,8 @@ int planMain(int argc, char** argv) {
   app.add_option("--certified-ratio", certified_ratio, "certified schedule: next bound = 1 + ratio x (c - 1)");
   app.add_option("--certified-split", certified_split, "certified schedule: w1 = bound^split, w2 = bound / w1");
   app.add_option("--final-gap", final_gap, "certified schedule: prove optimality once c <= 1 + gap");
+  bool publish_within = false;
+  app.add_flag("--publish-within", publish_within, "publish cheaper paths as soon as an iteration finds them");
   app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
   app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
   app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
@@ -83,6 +85,7 @@ int planMain(int argc, char** argv) {
   if (!std::isnan(certified_ratio)) pc.certified_ratio = certified_ratio;
   if (!std::isnan(certified_split)) pc.certified_split = certified_split;
   if (!std::isnan(final_gap)) pc.final_gap = final_gap;
+  if (publish_within) pc.publish_within_iterations = true;
   try {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {

@@ -73,6 +73,11 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   generate(start);
   generate(goal);
   setG(start, 0);
+  goal_ = goal;
+  goal_improved_ = false;
+  incons_this_iteration_ = false;
+  known_nominal_ = std::numeric_limits<double>::infinity();
+  known_lb_ = h(start, 0) == kInfiniteHeuristic ? 0 : static_cast<Cost>(h(start, 0));  // h0 is admissible
   if (h(start, 0) != kInfiniteHeuristic) {
     const QueueEntry k0 = key(start, 0);
     pushOpen(0, k0);
@@ -96,6 +101,9 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     const double nominal = w1_ * w2_;
     const Cost lb = collectOpen0AndIncons();
     report(nominal, lb, iteration_, w1_, w2_);
+    goal_improved_ = false;
+    known_nominal_ = nominal;
+    known_lb_ = std::max(known_lb_, lb);
     const bool certified_optimal = result_.solutions.back().certified_bound <= 1.0;
     if ((w1_ <= 1.0 && w2_ <= 1.0) || (certified_optimal && opt_.stop_when_certified_optimal)) {
       status = SearchStatus::kProvenOptimal;
@@ -122,7 +130,8 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
     // Below the bound already earned, so that the iteration must expand (and may improve the
     // path): its stop test g(goal) <= w2 min(g + w1 h0) fails while w1 w2 < cost / LB.
     const double c = std::min(certified, w1_ * w2_);
-    const double bound = c - 1.0 <= opt_.final_gap ? 1.0 : 1.0 + opt_.certified_ratio * (c - 1.0);
+    double bound = 1.0 + opt_.certified_ratio * (c - 1.0);
+    if (bound - 1.0 <= opt_.final_gap) bound = 1.0;
     *next_w1 = std::clamp(std::pow(bound, opt_.certified_split), 1.0, w1_);
     *next_w2 = std::clamp(bound / *next_w1, 1.0, w2_);
     return;
@@ -130,23 +139,39 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
   // The paper's decrements. An iteration whose stop test already holds after the re-keying
   // (g(goal) <= w2 min over OPEN_0 u INCONS of g + w1 h0) expands nothing and reports the same
   // path again: it is skipped (the search after it is the same), so that a large w1 does not
-  // report millions of copies. members_ is OPEN_0 u INCONS (collectOpen0AndIncons).
+  // report millions of copies. The test's right side falls with every decrement, so the
+  // iterations that stop at once come first: a binary search finds the first that does not.
+  // members_ is OPEN_0 u INCONS (collectOpen0AndIncons).
   const Cost goal_g = g(problem_->goal());
-  auto stopsAtOnce = [&](double w1, double w2) {
+  auto at = [&](std::uint64_t k, double* w1, double* w2) {
+    *w1 = std::max(w1_ - static_cast<double>(k) * opt_.dw1, 1.0);
+    *w2 = std::max(w2_ - static_cast<double>(k) * opt_.dw2, 1.0);
+  };
+  auto stopsAtOnce = [&](std::uint64_t k) {
+    double w1, w2;
+    at(k, &w1, &w2);
+    if (w1 <= 1.0 && w2 <= 1.0) return false;  // the last iteration always runs
     double min_key = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < members_.size(); ++k) {
-      const StateId s = members_[k];
+    for (std::size_t i = 0; i < members_.size(); ++i) {
+      const StateId s = members_[i];
       min_key = std::min(min_key, static_cast<double>(g(s)) + w1 * static_cast<double>(h(s, 0)));
     }
-    return static_cast<double>(goal_g) <= w2 * min_key;
+    return goal_g < kInfiniteCost && static_cast<double>(goal_g) <= w2 * min_key;
   };
-  double w1 = std::max(w1_ - opt_.dw1, 1.0), w2 = std::max(w2_ - opt_.dw2, 1.0);
-  while ((w1 > 1.0 || w2 > 1.0) && stopsAtOnce(w1, w2)) {
-    w1 = std::max(w1 - opt_.dw1, 1.0);
-    w2 = std::max(w2 - opt_.dw2, 1.0);
+  // The number of decrements to reach (1, 1), and the first k >= 1 whose iteration runs.
+  std::uint64_t last = 1;
+  if (opt_.dw1 > 0.0) last = std::max<std::uint64_t>(last, static_cast<std::uint64_t>(std::ceil((w1_ - 1.0) / opt_.dw1)));
+  if (opt_.dw2 > 0.0) last = std::max<std::uint64_t>(last, static_cast<std::uint64_t>(std::ceil((w2_ - 1.0) / opt_.dw2)));
+  std::uint64_t lo = 1, hi = last;  // stopsAtOnce is true below the answer, false from it on
+  while (lo < hi) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (stopsAtOnce(mid)) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
   }
-  *next_w1 = w1;
-  *next_w2 = w2;
+  at(lo, next_w1, next_w2);
 }
 
 void MhaEngine::generate(StateId s) {
@@ -165,8 +190,33 @@ bool MhaEngine::improvePath() {
     if (stopped()) return false;  // e.g. a queue could not grow: OPEN is incomplete
     if (!cleanTop(0)) return true;
     const double min0 = open_[0].topKey();
-    // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min().
-    if (static_cast<double>(g(goal)) <= w2_ * min0) return true;
+    // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min(). An unreached goal's
+    // g is a sentinel, not a cost: with a huge key it would pass the test (issue 22, item 1).
+    const Cost goal_g = g(goal);
+    if (goal_g < kInfiniteCost && static_cast<double>(goal_g) <= w2_ * min0) return true;
+    // A cheaper path found while the iteration goes on: published now (publish_improvements)
+    // with the bounds proven so far, the last finished iteration's and cost / the best lower
+    // bound; an iteration that ends here reports it itself (the test above).
+    if (goal_improved_) {
+      goal_improved_ = false;
+      if (opt_.publish_improvements) report(known_nominal_, known_lb_, iteration_, w1_, w2_, true);
+    }
+    // With w1 = 1 and no state in INCONS yet, OPEN_0's minimum g + h0 is itself a lower bound
+    // on the optimal cost (collectOpen0AndIncons), at every step: the certified bound of the
+    // path in hand tightens as the anchor goes. Publish it when it has halved its gap since the
+    // last report (publish_improvements), so that a long proof is not silent.
+    if (opt_.publish_improvements && w1_ <= 1.0 && !incons_this_iteration_ && !result_.solutions.empty() &&
+        goal_g < kInfiniteCost) {
+      const Solution& last = result_.solutions.back();
+      const Cost lb = static_cast<Cost>(min0);
+      if (lb > known_lb_) {
+        known_lb_ = lb;
+        const double c = static_cast<double>(last.cost) / static_cast<double>(lb);
+        if (c - 1.0 <= 0.5 * (last.certified_bound - 1.0) && c < last.certified_bound - 1e-3) {
+          report(known_nominal_, known_lb_, iteration_, w1_, w2_);
+        }
+      }
+    }
     if (limitHit()) return false;
     std::size_t q = 0;
     if (n_inad > 0) {
@@ -208,9 +258,11 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     if (ng >= g(t)) continue;
     setG(t, ng);
     setParent(t, s);
+    goal_improved_ = goal_improved_ || t == goal_;
     const std::uint32_t f = flags(t);
     if (f & kClosedAnch) {
       flags(t) |= kIncons;  // INCONS is the set of states with this flag
+      incons_this_iteration_ = true;
       continue;
     }
     if (h(t, 0) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
@@ -269,6 +321,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
     open_[i].restoreOrder();
   }
   clearClosed();
+  incons_this_iteration_ = false;
   return true;
 }
 

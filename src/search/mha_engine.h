@@ -21,6 +21,7 @@ struct MhaEngineOptions {
   double dw1 = 0.5, dw2 = 0.5;  // decrements per iteration
   WeightSchedule weight_schedule = WeightSchedule::kDecrement;
   double certified_ratio = 0.5, certified_split = 1.0, final_gap = 0.002;
+  bool publish_improvements = false;  // PlannerConfig::publish_within_iterations
   bool anytime = true;          // false: one ImprovePath (MHA*, weighted A*, A*)
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
@@ -163,6 +164,11 @@ class MhaEngine : public SearchBase {
   bool dts_ = false;        // opt_.schedule == kDts and there are inadmissible queues
   bool progress_ = false;   // DTS: the current expansion lowered its queue's smallest h
   DtsSchedule schedule_;
+  StateId goal_ = kNoState;
+  bool goal_improved_ = false;  // g(goal) fell since the last report
+  bool incons_this_iteration_ = false;  // a state entered INCONS in this ImprovePath
+  Cost known_lb_ = 0;           // the best proven lower bound on the optimal cost so far
+  double known_nominal_ = 0.0;  // the last finished iteration's bound w1 w2 (inf before)
 
   ReallocVector<std::uint32_t> rec_;  // the records
   ReallocVector<StateId> members_;    // OPEN_0 u INCONS, from collectOpen0AndIncons()

@@ -1,5 +1,6 @@
 // Maps an Algorithm and its parameters onto the engines.
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,16 +34,19 @@ class AnaPlanner : public Planner {
   detail::AnaStar engine_;
 };
 
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 void checkWeight(double w, const char* name) {
-  if (!std::isfinite(w) || w < 1.0) {
-    throw std::invalid_argument(std::string(name) + " must be a finite number >= 1, got " +
-                                std::to_string(w));
+  if (!(w >= 1.0 && w <= kMaxWeight)) {
+    throw std::invalid_argument(std::string(name) + " must be a number in [1, " + num(kMaxWeight) + "], got " + num(w));
   }
 }
 void checkDecrement(double d, const char* name) {
-  if (!std::isfinite(d) || d < 0.0) {
-    throw std::invalid_argument(std::string(name) + " must be a finite number >= 0, got " +
-                                std::to_string(d));
+  if (!(d >= 0.0 && d <= kMaxWeight)) {
+    throw std::invalid_argument(std::string(name) + " must be a number in [0, " + num(kMaxWeight) + "], got " + num(d));
   }
 }
 
@@ -60,16 +64,17 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
   o.certified_ratio = c.certified_ratio;
   o.certified_split = c.certified_split;
   o.final_gap = c.final_gap;
+  o.publish_improvements = c.publish_within_iterations;
   const bool certified = c.weight_schedule == WeightSchedule::kCertified;
   if (certified) {
-    if (!(c.certified_ratio > 0.0 && c.certified_ratio < 1.0)) {
-      throw std::invalid_argument("certified_ratio must be in (0, 1), got " + std::to_string(c.certified_ratio));
+    if (!(c.certified_ratio >= 0.0 && c.certified_ratio < 1.0)) {
+      throw std::invalid_argument("certified_ratio must be in [0, 1), got " + num(c.certified_ratio));
     }
     if (!(c.certified_split >= 0.0 && c.certified_split <= 1.0)) {
-      throw std::invalid_argument("certified_split must be in [0, 1], got " + std::to_string(c.certified_split));
+      throw std::invalid_argument("certified_split must be in [0, 1], got " + num(c.certified_split));
     }
     if (!(c.final_gap >= 0.0 && c.final_gap < 1e6)) {
-      throw std::invalid_argument("final_gap must be a finite number >= 0, got " + std::to_string(c.final_gap));
+      throw std::invalid_argument("final_gap must be a number in [0, 1e6), got " + num(c.final_gap));
     }
   }
   o.anytime = false;

@@ -57,8 +57,8 @@ bool SearchBase::slowLimitCheck() {
   return false;
 }
 
-void SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, double w1,
-                        double w2) {
+bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, double w1,
+                        double w2, bool only_if_cheaper) {
   SearchProblem& p = *problem_;
   Solution sol;
   // Parent chains are acyclic (g strictly decreases towards the start since edge costs are
@@ -81,6 +81,7 @@ void SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
     cost += best;
   }
   sol.cost = cost;
+  if (only_if_cheaper && !result_.solutions.empty() && result_.solutions.back().cost <= cost) return false;
   // Keep the best path: a new parent chain is bounded by the new, lower g(goal), but can still
   // cost more than the previous chain's true sum (which may have been below its g(goal)).
   // Re-publishing the cheaper previous path keeps costs non-increasing; the new bounds hold for
@@ -108,6 +109,7 @@ void SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
   sol.w2 = w2;
   result_.solutions.push_back(std::move(sol));
   if (callback_ != nullptr && *callback_) (*callback_)(result_.solutions.back());
+  return true;
 }
 
 void SearchBase::finish(SearchStatus status) {

@@ -72,7 +72,10 @@ class SearchBase {
   /// Builds the path start..goal from parent pointers, recomputes its cost from the domain's
   /// edges, and reports it (with the given bounds) through the callback and into result_.
   /// `lower_bound` is a proven lower bound on the optimal cost (kInfiniteCost if none).
-  void report(double nominal_bound, Cost lower_bound, int iteration, double w1, double w2);
+  /// only_if_cheaper: report nothing (and return false) unless the path costs less than the
+  /// last reported one.
+  bool report(double nominal_bound, Cost lower_bound, int iteration, double w1, double w2,
+              bool only_if_cheaper = false);
 
   /// g-value and parent of a state (the engines store them in their own layouts).
   virtual Cost gOf(StateId s) const = 0;

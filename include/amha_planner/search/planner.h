@@ -40,11 +40,10 @@ bool parseSchedule(const std::string& name, QueueSchedule* out);
 ///    guarantee already proven; they are skipped (the weights jump over them), which changes
 ///    no path, only how many identical solutions are reported.
 ///  - kCertified: from the certified bound c of the last solution, the next bound is
-///    B = 1 + certified_ratio x (c - 1) (or 1 once c <= 1 + final_gap), below c so that the
-///    iteration can improve on the path, with w1 = B^certified_split and w2 = B / w1 (never
-///    above their current values). Improvements then arrive between the first path and the
-///    proof, at bounds the previous solution has earned, rather than along a fixed ladder whose
-///    last step (2.25 -> 1) is the whole proof.
+///    B = 1 + certified_ratio x (c - 1) (1 if that is within final_gap of 1; a ratio of 0 goes
+///    straight to the proof), below c so that the iteration must expand, with
+///    w1 = B^certified_split and w2 = B / w1 (never above their current values). With
+///    publish_within_iterations, what an iteration finds is published as it comes.
 enum class WeightSchedule { kDecrement, kCertified };
 /// "decrement", "certified".
 const char* weightScheduleName(WeightSchedule s);
@@ -84,9 +83,14 @@ struct PlannerConfig {
   /// How the weights fall between iterations (kDecrement uses dw1, dw2; kCertified the three
   /// parameters below).
   WeightSchedule weight_schedule = WeightSchedule::kDecrement;
-  double certified_ratio = 0.5;   ///< in (0, 1): the share of c - 1 the next bound keeps
+  double certified_ratio = 0.5;   ///< in [0, 1): the share of c - 1 the next bound keeps
   double certified_split = 1.0;   ///< in [0, 1]: the exponent of the bound given to w1
   double final_gap = 0.002;       ///< >= 0: below 1 + this, the next iteration is the proof
+  /// Publish a cheaper path as soon as an iteration finds it, not only when the iteration ends
+  /// (A-MHA*, ARA*). Its bounds are those proven so far: the last finished iteration's w1 w2
+  /// (infinite before the first) and cost / the best lower bound proven so far. Off: the
+  /// paper's Algorithm 1 exactly, one solution per ImprovePath.
+  bool publish_within_iterations = false;
   /// Use at most this many inadmissible heuristics of the problem (all by default).
   std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
   /// Order in which the inadmissible queues are tried (A-MHA*, MHA*).
@@ -138,8 +142,14 @@ class Planner {
                               const SolutionCallback& on_solution = {}) = 0;
 };
 
-/// Makes the planner for config.algorithm. Throws std::invalid_argument for weights < 1 or
-/// non-finite, or negative decrements.
+/// The largest weight (w1, w2, epsilon) and decrement a planner accepts. Keys g + w1 h stay
+/// exact in a double up to 2^53, and heuristic values are below 2^32: 1e6 leaves a margin of
+/// two thousand, and no useful inflation comes near it.
+constexpr double kMaxWeight = 1e6;
+
+/// Makes the planner for config.algorithm. Throws std::invalid_argument for weights outside
+/// [1, kMaxWeight] (NaN included), decrements outside [0, kMaxWeight], or certified-schedule
+/// parameters outside their ranges.
 std::unique_ptr<Planner> makePlanner(const PlannerConfig& config);
 
 /// Presets that reproduce the paper's settings for `algorithm` (documented in the README).

@@ -1,0 +1,166 @@
+// The anytime weight schedules (WeightSchedule): the certified schedule's solutions stay within
+// their bounds and end proven optimal, every reported iteration after the first expands
+// something (no copies of one solution), and weights up to kMaxWeight find the goal (a huge
+// weight once made the unreached goal's sentinel pass the stop test: a false "no path").
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "test_graphs.h"
+
+namespace amha {
+namespace {
+
+using testing::ExplicitGraph;
+using testing::GenOptions;
+
+std::vector<ExplicitGraph> graphs() {
+  std::vector<ExplicitGraph> out;
+  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
+    GenOptions o;
+    o.seed = seed;
+    o.n_inadmissible = 3;
+    o.anchor_scale = seed % 2 ? 0.6 : 1.0;
+    out.push_back(testing::randomGrid(28, 22, 0.25, o));
+    out.back().small_keys = seed % 3 == 0;
+    out.push_back(testing::randomGraph(400, 3, o));
+  }
+  return out;
+}
+
+// Every solution valid and within its bounds, costs never rising, the last proven optimal, and
+// every solution after the first but the proof coming from an iteration that expanded states.
+void checkStream(ExplicitGraph& g, const PlannerConfig& c, const std::string& label) {
+  SCOPED_TRACE(label);
+  const Cost optimal = testing::distancesToGoal(g)[g.s_start];
+  const SearchResult r = makePlanner(c)->search(g, SearchLimits());
+  if (optimal >= kInfiniteCost) {
+    EXPECT_EQ(r.status, SearchStatus::kNoSolution);
+    return;
+  }
+  ASSERT_TRUE(r.hasSolution());
+  EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
+  EXPECT_EQ(r.best().cost, optimal);
+  for (std::size_t k = 0; k < r.solutions.size(); ++k) {
+    const Solution& s = r.solutions[k];
+    EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
+    if (k == 0) continue;
+    EXPECT_LE(s.cost, r.solutions[k - 1].cost);
+    // The last iteration (w1 = w2 = 1) always runs, and may find nothing left to expand.
+    if (s.nominal_bound > 1.0) {
+      EXPECT_GT(s.expansions, r.solutions[k - 1].expansions) << "solution " << k << " repeats the last one";
+    }
+    EXPECT_LT(s.nominal_bound, r.solutions[k - 1].nominal_bound);
+  }
+}
+
+TEST(WeightSchedule, CertifiedSolutionsBoundedImprovingAndOptimalAtTheEnd) {
+  int more_than_two = 0;
+  for (ExplicitGraph& g : graphs()) {
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
+      for (const double split : {0.0, 0.5, 1.0}) {
+        PlannerConfig c = defaultConfig(a);
+        c.w1 = 3.0;
+        c.weight_schedule = WeightSchedule::kCertified;
+        c.certified_ratio = 0.4;
+        c.certified_split = split;
+        c.final_gap = 0.0;
+        c.check_invariants = true;
+        checkStream(g, c, std::string(algorithmName(a)) + " split " + std::to_string(split));
+        more_than_two += makePlanner(c)->search(g, SearchLimits()).solutions.size() > 2;
+      }
+    }
+  }
+  EXPECT_GT(more_than_two, 10) << "the certified schedule should publish solutions between the first and the last";
+}
+
+// Publishing within iterations: every solution still valid and within its bounds, costs
+// falling, and between the first and the proof the stream holds cheaper paths or tighter
+// certified bounds even when the schedule goes straight from the first iteration to the proof.
+TEST(WeightSchedule, PublishingWithinIterationsFillsTheMiddleHonestly) {
+  int middles = 0, runs = 0;
+  for (ExplicitGraph& g : graphs()) {
+    const Cost optimal = testing::distancesToGoal(g)[g.s_start];
+    if (optimal >= kInfiniteCost) continue;
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
+      PlannerConfig c = defaultConfig(a);
+      c.w1 = 3.0;
+      c.weight_schedule = WeightSchedule::kCertified;
+      c.certified_ratio = 0.0;  // straight to the proof
+      c.publish_within_iterations = true;
+      c.check_invariants = true;
+      const SearchResult r = makePlanner(c)->search(g, SearchLimits());
+      ASSERT_TRUE(r.hasSolution());
+      EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
+      EXPECT_EQ(r.best().cost, optimal);
+      for (std::size_t k = 0; k < r.solutions.size(); ++k) {
+        const Solution& s = r.solutions[k];
+        EXPECT_EQ(testing::validateSolution(g, s, optimal), "") << algorithmName(a) << " solution " << k;
+        if (k == 0) continue;
+        EXPECT_LE(s.cost, r.solutions[k - 1].cost);
+        EXPECT_TRUE(s.cost < r.solutions[k - 1].cost || s.certified_bound < r.solutions[k - 1].certified_bound)
+            << algorithmName(a) << " solution " << k << " tells nothing new";
+      }
+      ++runs;
+      middles += r.solutions.size() > 2;
+    }
+  }
+  EXPECT_GT(middles, runs / 4) << "publishing within iterations should fill the middle of many runs";
+}
+
+TEST(WeightSchedule, DecrementsReportNoIterationThatStopsAtOnce) {
+  for (ExplicitGraph& g : graphs()) {
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
+      PlannerConfig c = defaultConfig(a);
+      c.stop_when_certified_optimal = false;  // walk the whole ladder
+      c.check_invariants = true;
+      checkStream(g, c, std::string(algorithmName(a)) + " decrement");
+    }
+  }
+}
+
+TEST(WeightSchedule, HugeWeightsStillFindTheGoal) {
+  for (ExplicitGraph& g : graphs()) {
+    const Cost optimal = testing::distancesToGoal(g)[g.s_start];
+    if (optimal >= kInfiniteCost) continue;
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kWeightedAStar}) {
+      PlannerConfig c = defaultConfig(a);
+      c.w1 = kMaxWeight;
+      if (a == Algorithm::kAmhaStar || a == Algorithm::kMhaStar) c.w2 = kMaxWeight;
+      c.dw1 = 0.5;  // millions of decrements: they must not all be walked one by one
+      const SearchResult r = makePlanner(c)->search(g, SearchLimits());
+      ASSERT_TRUE(r.hasSolution()) << algorithmName(a) << ": " << statusName(r.status);
+      EXPECT_EQ(testing::validateSolution(g, r.best(), optimal), "");
+      EXPECT_LT(r.solutions.size(), 60u) << algorithmName(a);
+    }
+  }
+}
+
+TEST(WeightSchedule, OutOfRangeParametersAreRefused) {
+  PlannerConfig c = defaultConfig(Algorithm::kAmhaStar);
+  c.w1 = kMaxWeight * 2;
+  EXPECT_THROW(makePlanner(c), std::invalid_argument);
+  c = defaultConfig(Algorithm::kAraStar);
+  c.w1 = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(makePlanner(c), std::invalid_argument);
+  c = defaultConfig(Algorithm::kAmhaStar);
+  c.dw2 = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(makePlanner(c), std::invalid_argument);
+  for (const double bad : {1.0, -0.5, std::numeric_limits<double>::quiet_NaN()}) {
+    c = defaultConfig(Algorithm::kAmhaStar);
+    c.weight_schedule = WeightSchedule::kCertified;
+    c.certified_ratio = bad;
+    EXPECT_THROW(makePlanner(c), std::invalid_argument) << bad;
+  }
+  c = defaultConfig(Algorithm::kAmhaStar);
+  c.weight_schedule = WeightSchedule::kCertified;
+  c.certified_split = 1.5;
+  EXPECT_THROW(makePlanner(c), std::invalid_argument);
+  c.certified_split = 1.0;
+  c.dw1 = 0.0;  // the certified schedule does not use the decrements
+  EXPECT_NO_THROW(makePlanner(c));
+}
+
+}  // namespace
+}  // namespace amha
