@@ -61,6 +61,9 @@ install(FILES ${_amha_index}/packages/${PROJECT_NAME}
         DESTINATION share/ament_index/resource_index/packages)
 install(FILES ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
         DESTINATION share/ament_index/resource_index/nodelet__pluginlib__plugin)
+# ... and sourcing a workspace's setup.bash puts that workspace (devel or install space) on
+# AMENT_PREFIX_PATH, so that roslaunch finds the nodelet without any export by hand.
+catkin_add_env_hooks(50.amha_planner_ament_prefix SHELLS sh DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/cmake/env-hooks)
 
 # Unit tests of the message conversions (the request queue's are in robustness.cmake: ROS-free).
 amha_add_gtest(amha_ros_unit_tests
