@@ -20,6 +20,7 @@ add_library(amha_lattice
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
   src/lattice/goal_tolerance.cpp
+  src/lattice/start_escape.cpp
 )
 target_include_directories(amha_lattice PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
@@ -81,6 +82,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/heuristic_repair_test.cpp
     test/lattice/goal_tolerance_test.cpp
     test/lattice/any_goal_heading_test.cpp
+    test/lattice/start_escape_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
 
