@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <queue>
 #include <random>
-#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -46,16 +44,6 @@ std::shared_ptr<GridMap> inflatedMap(unsigned seed) {
   return m;
 }
 
-LatticeConfig configFor(unsigned seed) {
-  LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.footprint = test::rectangle(0.09, 0.05);
-  c.allow_reverse = seed % 3 == 0;
-  c.cost_penalty = seed % 2 ? 4.0 : 1.0;
-  c.time_to_turn_45 = 1.0;
-  return c;
-}
-
 // The lethal and unknown cells under the robot at s (the rule's "cells it already stands on").
 std::vector<std::size_t> cellsUnder(const LatticeGraph& g, const LatticeState& s) {
   std::vector<std::size_t> out;
@@ -87,35 +75,13 @@ Cost ruleCost(const LatticeGraph& g, const std::vector<std::size_t>& under, int 
 // The relaxed problem's optimal cost from s (in collision) to t, by Dijkstra over every state:
 // escape motions out of states in collision within the tolerance, the graph's edges elsewhere.
 Cost relaxedOptimum(const LatticeGraph& g, const LatticeState& s, const LatticeState& t) {
-  const int w = g.width(), nh = g.numHeadings();
   const std::vector<std::size_t> under = cellsUnder(g, s);
-  auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y) * w + x) * nh + h; };
-  std::vector<Cost> d(static_cast<std::size_t>(w) * g.height() * nh, kInfiniteCost);
-  using Item = std::pair<Cost, std::tuple<int, int, int>>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-  d[index(s.x, s.y, s.heading)] = 0;
-  q.push({0, {s.x, s.y, s.heading}});
-  while (!q.empty()) {
-    const auto [c, st] = q.top();
-    q.pop();
-    const auto [x, y, h] = st;
-    if (c != d[index(x, y, h)]) continue;
-    const bool escaping = !g.stateValid(x, y, h);
-    for (std::size_t i = 0; i < g.actions().size(); ++i) {
-      const LatticeAction& a = g.actions()[i];
-      if (a.start_heading != h) continue;
-      const int nx = x + a.dx, ny = y + a.dy;
-      Cost e = escaping ? ruleCost(g, under, x, y, i) : g.edgeCost(x, y, a);
-      if (escaping && std::hypot(nx - s.x, ny - s.y) * g.map().resolution > kTolerance + 1e-9) e = -1;
-      if (e < 0) continue;
-      const std::size_t k = index(nx, ny, a.end_heading);
-      if (c + e < d[k]) {
-        d[k] = c + e;
-        q.push({d[k], {nx, ny, a.end_heading}});
-      }
-    }
-  }
-  return d[index(t.x, t.y, t.heading)];
+  const std::vector<Cost> d = test::dijkstraFrom(g, s, [&](int x, int y, const LatticeAction& a) -> Cost {
+    if (g.stateValid(x, y, a.start_heading)) return g.edgeCost(x, y, a);
+    if (std::hypot(x + a.dx - s.x, y + a.dy - s.y) * g.map().resolution > kTolerance + 1e-9) return -1;
+    return ruleCost(g, under, x, y, static_cast<std::size_t>(&a - g.actions().data()));
+  });
+  return d[(static_cast<std::size_t>(t.y) * g.width() + t.x) * g.numHeadings() + t.heading];
 }
 
 // The map the independent validator checks escape motions on: the obstacle cells under the
@@ -141,7 +107,7 @@ TEST(StartEscape, SolutionsAgainstAnExhaustiveDijkstraOfTheRelaxedProblem) {
   int queries = 0, solved = 0, multi_step = 0;
   for (unsigned seed = 1; seed <= 12; ++seed) {
     const auto map = inflatedMap(seed);
-    const LatticeGraph g(map, configFor(seed));
+    const LatticeGraph g(map, test::smallRobot(seed));
     const HeuristicGridBuilder b(g);
     const test::ValidatorModel model = test::modelFor(g);
     std::mt19937 rng(seed * 7);
@@ -223,7 +189,7 @@ TEST(StartEscape, VirtualStartKeepsTheAnchorConsistent) {
   int checked = 0;
   for (unsigned seed = 1; seed <= 8; ++seed) {
     const auto map = inflatedMap(seed + 20);
-    const LatticeGraph g(map, configFor(seed));
+    const LatticeGraph g(map, test::smallRobot(seed));
     const HeuristicGridBuilder b(g);
     std::mt19937 rng(seed);
     for (int tries = 0; tries < 500; ++tries) {

@@ -504,11 +504,13 @@ TEST(PlannerNodelet, StartToleranceLeavesAStartInCollision) {
   expectEscape(srv.response, at_block, kRoomGoal, 0.5);
   expectMonotone(srv.response.solutions);
 
-  // The action too.
+  // The action too, with the same request.
+  const Plan::Request& r = srv.request;
   PlanAnytimeGoal goal;
-  goal.start = at_block;
-  goal.goal = kRoomGoal;
-  goal.start_tolerance = 0.5;
+  goal.start = r.start;
+  goal.goal = r.goal;
+  goal.time_budget = r.time_budget;
+  goal.start_tolerance = r.start_tolerance;
   const ActionOutcome out = runAction(goal);
   ASSERT_TRUE(out.result);
   EXPECT_EQ(out.state, actionlib::SimpleClientGoalState::SUCCEEDED);
