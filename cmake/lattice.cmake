@@ -21,6 +21,7 @@ add_library(amha_lattice
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
   src/lattice/goal_tolerance.cpp
+  src/lattice/start_escape.cpp
 )
 target_include_directories(amha_lattice PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
@@ -63,6 +64,13 @@ add_test(NAME amha_plan_goal_tolerance
          COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 24.45,6.45,1.57 --algorithm wastar --time-limit 5); \"$0\" \"\${args[@]}\" >/dev/null 2>&1; [ $? -eq 6 ] || exit 1; out=$(\"$0\" \"\${args[@]}\" --goal-tolerance 0.6 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'planning to the nearest reachable collision-free pose instead' <<<\"$out\""
                  $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
+# A start on a wall of the bundled map: refused (exit 5) without a start tolerance; with one the
+# path leaves the wall first and says how, and the JSON marks the escape; a tolerance too small
+# to reach a free pose is refused again, naming it.
+add_test(NAME amha_plan_start_tolerance
+         COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 24.45,6.45,1.57 --goal 17,55,0 --algorithm wastar --time-limit 5); \"$0\" \"\${args[@]}\" >/dev/null 2>&1; [ $? -eq 5 ] || exit 1; json=$(mktemp); out=$(\"$0\" \"\${args[@]}\" --start-tolerance 0.6 --json \"$json\" 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'the path leaves it by' <<<\"$out\" && grep -q '\"start_escaped\": *true' \"$json\" || exit 1; rm -f \"$json\"; out=$(\"$0\" \"\${args[@]}\" --start-tolerance 0.05 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 5 ] && grep -q 'within the start tolerance of 0.050 m' <<<\"$out\""
+                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+
 # A free goal heading on the bundled map: A* proves a cheaper optimum than with the goal's own
 # heading (72719 against 73316 cost units, measured) and says where it ended.
 add_test(NAME amha_plan_any_goal_heading
@@ -83,6 +91,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/goal_tolerance_test.cpp
     test/lattice/any_goal_heading_test.cpp
     test/lattice/kinematic_table_test.cpp
+    test/lattice/start_escape_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
 

@@ -10,10 +10,11 @@ add_library(amha_ros
   src/ros/plan_queue.cpp
   src/ros/latest_job_runner.cpp
   src/ros/planner_server.cpp
+  src/ros/reconfigure.cpp
 )
 target_include_directories(amha_ros PUBLIC include ${catkin_INCLUDE_DIRS})
 target_link_libraries(amha_ros PUBLIC amha_lattice ${catkin_LIBRARIES} Threads::Threads)
-add_dependencies(amha_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
+add_dependencies(amha_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg ${catkin_EXPORTED_TARGETS})
 
 # amha_planner/PlannerNodelet, in devel/lib/libamha_planner_nodelet.so (nodelet_plugins.xml).
 add_library(amha_planner_nodelet SHARED src/ros/planner_nodelet.cpp)
@@ -61,6 +62,9 @@ install(FILES ${_amha_index}/packages/${PROJECT_NAME}
         DESTINATION share/ament_index/resource_index/packages)
 install(FILES ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
         DESTINATION share/ament_index/resource_index/nodelet__pluginlib__plugin)
+# ... and sourcing a workspace's setup.bash puts that workspace (devel or install space) on
+# AMENT_PREFIX_PATH, so that roslaunch finds the nodelet without any export by hand.
+catkin_add_env_hooks(50.amha_planner_ament_prefix SHELLS sh DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/cmake/env-hooks)
 
 # Unit tests of the message conversions (the request queue's are in robustness.cmake: ROS-free).
 amha_add_gtest(amha_ros_unit_tests
@@ -75,5 +79,6 @@ function(amha_add_rostest_node name)
 endfunction()
 amha_add_rostest_node(planner_rostest test/ros/planner_rostest.cpp test/ros/rostest_support.cpp)
 amha_add_rostest_node(no_map_rostest test/ros/no_map_rostest.cpp test/ros/rostest_support.cpp)
+amha_add_rostest_node(reconfigure_rostest test/ros/reconfigure_rostest.cpp test/ros/rostest_support.cpp)
 add_executable(static_tf_publisher test/ros/static_tf_publisher.cpp)
 target_link_libraries(static_tf_publisher PRIVATE amha_ros)

@@ -14,6 +14,7 @@ AMHA_DEBS=(
   libtf2-ros-dev libtf2-geometry-msgs-dev libnav-msgs-dev libmap-msgs-dev libgeometry-msgs-dev libvisualization-msgs-dev libstd-srvs-dev
   libactionlib-dev librostest-dev python3-rostest
   python3-actionlib python3-nav-msgs python3-geometry-msgs python3-map-msgs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libopencv-dev libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libboost-dev
 )
 

@@ -33,6 +33,13 @@ int planMain(int argc, char** argv) {
   app.add_option("--goal-tolerance", goal_tolerance,
                  "metres: if the goal is in collision, plan to the nearest collision-free pose within this "
                  "distance that the start can reach (default 0: the exact goal)");
+  double start_tolerance = 0.0, escape_penalty = lattice::StartOptions().penalty;
+  app.add_option("--start-tolerance", start_tolerance,
+                 "metres: if the start is in collision, the path may first leave it by motions across inscribed "
+                 "cells and the obstacle cells under the robot, within this distance (default 0: refuse it)");
+  app.add_option("--escape-penalty", escape_penalty,
+                 "with --start-tolerance: an escape motion costs this times its cost across the costliest free "
+                 "cells (default 2, >= 1)");
   bool any_goal_heading = false;
   app.add_flag("--any-goal-heading", any_goal_heading,
                "end at the goal's position with whichever heading is cheapest (its own is ignored)");
@@ -96,6 +103,14 @@ int planMain(int argc, char** argv) {
     std::cerr << "amha plan: --goal-tolerance must be finite and >= 0\n";
     return kExitUsage;
   }
+  if (!(start_tolerance >= 0.0) || !std::isfinite(start_tolerance)) {
+    std::cerr << "amha plan: --start-tolerance must be finite and >= 0\n";
+    return kExitUsage;
+  }
+  if (!(escape_penalty >= 1.0) || !std::isfinite(escape_penalty)) {
+    std::cerr << "amha plan: --escape-penalty must be finite and >= 1\n";
+    return kExitUsage;
+  }
   if (!(time_limit > 0.0)) {
     std::cerr << "amha plan: --time-limit must be positive\n";
     return kExitUsage;
@@ -151,7 +166,10 @@ int planMain(int argc, char** argv) {
   lattice::GoalOptions goal_options;
   goal_options.tolerance = goal_tolerance;
   goal_options.any_heading = any_goal_heading;
-  const lattice::PlanResult r = planner->plan(start, goal, goal_options, pc, limits, print);
+  lattice::StartOptions start_options;
+  start_options.tolerance = start_tolerance;
+  start_options.penalty = escape_penalty;
+  const lattice::PlanResult r = planner->plan(start, goal, start_options, goal_options, pc, limits, print);
   if (r.error != lattice::QueryError::kNone) {
     std::cerr << "amha plan: " << r.message << "\n";
     const bool is_start = r.error == lattice::QueryError::kStartNotFinite || r.error == lattice::QueryError::kStartOutOfMap ||
@@ -159,11 +177,12 @@ int planMain(int argc, char** argv) {
     if (r.error == lattice::QueryError::kGoalUnreachable) return kExitNoSolution;
     return is_start ? kExitBadStart : kExitBadGoal;
   }
+  if (r.start_escaped) std::printf("%s\nstart escape %.4f s\n", r.escape_message.c_str(), r.escape_seconds);
   if (r.goal_substituted) std::printf("%s\ngoal choice %.4f s\n", r.message.c_str(), r.goal_seconds);
   std::printf("status %s: %zu solutions, %llu expansions, %zu states, %.1f MB, heuristics %.4f s, total %.4f s\n",
               statusName(r.search.status), r.solutions.size(), static_cast<unsigned long long>(r.search.expansions),
               r.search.peak_states, r.search.peak_memory_bytes / 1e6, r.heuristic_seconds,
-              r.goal_seconds + r.heuristic_seconds + r.search.elapsed_s);
+              r.escape_seconds + r.goal_seconds + r.heuristic_seconds + r.search.elapsed_s);
 
   try {
     if (!json_path.empty()) {
@@ -180,6 +199,9 @@ int planMain(int argc, char** argv) {
       extra["goal_tolerance"] = goal_tolerance;
       extra["goal_substituted"] = r.goal_substituted;
       extra["any_goal_heading"] = any_goal_heading;
+      extra["start_tolerance"] = start_tolerance;
+      extra["start_escaped"] = r.start_escaped;
+      if (!r.solutions.empty()) extra["escape_poses"] = r.solutions.back().escape_poses;
       writeRunsJson(json_path, nlohmann::json::array({run}), extra);
     }
     if (!image_path.empty()) {

@@ -14,6 +14,7 @@
 #include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/start_escape.h"
 
 namespace amha {
 namespace lattice {
@@ -160,6 +161,12 @@ struct LatticePlanner::Impl {
     }
   }
 
+  /// Appends the poses of `a` from `from` after its first (which ends the poses so far).
+  void appendMotion(const LatticeState& from, const LatticeAction& a, std::vector<Pose2D>& poses) const {
+    const MotionPrimitive& prim = graph->primitives().primitives[a.primitive];
+    for (std::size_t i = 1; i < prim.poses.size(); ++i) poses.push_back(graph->cellPoseToMap(from.x, from.y, prim.poses[i]));
+  }
+
   std::vector<Pose2D> posesOf(const LatticeProblem& problem, const std::vector<StateId>& path) const {
     std::vector<Pose2D> poses;
     if (path.empty()) return poses;
@@ -168,11 +175,22 @@ struct LatticePlanner::Impl {
     for (std::size_t k = 1; k < path.size(); ++k) {
       const LatticeAction* a = problem.actionBetween(path[k - 1], path[k], nullptr);
       if (a == nullptr) throw std::logic_error("lattice: solution uses a transition that is not an action");
-      const LatticeState from = problem.state(path[k - 1]);
-      const MotionPrimitive& prim = graph->primitives().primitives[a->primitive];
-      for (std::size_t i = 1; i < prim.poses.size(); ++i) poses.push_back(graph->cellPoseToMap(from.x, from.y, prim.poses[i]));
+      appendMotion(problem.state(path[k - 1]), *a, poses);
     }
     return poses;
+  }
+
+  /// Puts the escape from `start` to the solution's first state (an exit) before its poses.
+  void prependEscape(const StartEscape& escape, const LatticeState& start, const LatticeState& first,
+                     LatticeSolution& solution) const {
+    const StartEscape::Exit* exit = escape.exitAt(first);
+    if (exit == nullptr) throw std::logic_error("lattice: a solution starts at a state no escape reaches");
+    std::vector<Pose2D> poses{graph->stateToPose(start.x, start.y, start.heading)};
+    for (const StartEscape::Step& step : escape.path(*exit)) appendMotion(step.from, *step.action, poses);
+    solution.escape_poses = poses.size();
+    solution.escape_cost = exit->cost;
+    poses.insert(poses.end(), solution.poses.begin() + 1, solution.poses.end());
+    solution.poses = std::move(poses);
   }
 };
 
@@ -205,40 +223,41 @@ std::string poseText(const Pose2D& p) {
 }
 }  // namespace
 
-QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const {
-  const LatticeGraph& g = *impl_->graph;
-  const Pose2D* poses[2] = {&start, &goal};
-  const char* names[2] = {"start", "goal"};
-  const QueryError errors[2][3] = {
-      {QueryError::kStartNotFinite, QueryError::kStartOutOfMap, QueryError::kStartInCollision},
-      {QueryError::kGoalNotFinite, QueryError::kGoalOutOfMap, QueryError::kGoalInCollision}};
-  for (int k = 0; k < 2; ++k) {
-    const Pose2D& p = *poses[k];
-    std::string why;
-    QueryError e = QueryError::kNone;
-    int x = 0, y = 0, h = 0;
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta)) {
-      e = errors[k][0];
-      why = std::string(names[k]) + " pose is not finite";
-    } else if (!g.poseToState(p, &x, &y, &h)) {
-      e = errors[k][1];
-      char buf[160];
-      std::snprintf(buf, sizeof buf, " is outside the map (%d x %d cells of %.3f m, origin (%.3f, %.3f, %.3f))",
-                    g.width(), g.height(), g.map().resolution, g.map().origin_x, g.map().origin_y, g.map().origin_yaw);
-      why = std::string(names[k]) + " " + poseText(p) + buf;
-    } else if (!g.stateValid(x, y, h)) {
-      e = errors[k][2];
-      why = std::string(names[k]) + " " + poseText(p) + " is in collision (cell " + std::to_string(x) + ", " +
-            std::to_string(y) + ", heading " + std::to_string(h) + ": cell cost " +
-            std::to_string(g.map().at(x, y)) + " or the footprint touches an obstacle or leaves the map)";
-    }
-    if (e != QueryError::kNone) {
-      if (message != nullptr) *message = why;
-      return e;
-    }
+namespace {
+
+/// checkQuery's verdict on one pose (the start if is_start, else the goal); `why` says why.
+QueryError checkPose(const LatticeGraph& g, const Pose2D& p, bool is_start, std::string* why) {
+  const char* name = is_start ? "start" : "goal";
+  int x = 0, y = 0, h = 0;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta)) {
+    *why = std::string(name) + " pose is not finite";
+    return is_start ? QueryError::kStartNotFinite : QueryError::kGoalNotFinite;
   }
-  if (message != nullptr) message->clear();
+  if (!g.poseToState(p, &x, &y, &h)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " is outside the map (%d x %d cells of %.3f m, origin (%.3f, %.3f, %.3f))",
+                  g.width(), g.height(), g.map().resolution, g.map().origin_x, g.map().origin_y, g.map().origin_yaw);
+    *why = std::string(name) + " " + poseText(p) + buf;
+    return is_start ? QueryError::kStartOutOfMap : QueryError::kGoalOutOfMap;
+  }
+  if (!g.stateValid(x, y, h)) {
+    *why = std::string(name) + " " + poseText(p) + " is in collision (cell " + std::to_string(x) + ", " +
+           std::to_string(y) + ", heading " + std::to_string(h) + ": cell cost " + std::to_string(g.map().at(x, y)) +
+           " or the footprint touches an obstacle or leaves the map)";
+    return is_start ? QueryError::kStartInCollision : QueryError::kGoalInCollision;
+  }
+  why->clear();
   return QueryError::kNone;
+}
+
+}  // namespace
+
+QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const {
+  std::string why;
+  QueryError e = checkPose(*impl_->graph, start, true, &why);
+  if (e == QueryError::kNone) e = checkPose(*impl_->graph, goal, false, &why);
+  if (message != nullptr) *message = why;
+  return e;
 }
 
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
@@ -259,7 +278,7 @@ SearchStatus stoppedStatus(const GridStop& stop) {
 /// collision. `result` holds checkQuery's verdict on entry; false if it is final (a query
 /// error, or `stop` came first: then result.search.status says which).
 bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal, const GoalOptions& options,
-                const GridStop& stop, std::chrono::steady_clock::time_point call_start, PlanResult& result,
+                const GridStop& stop, std::chrono::steady_clock::time_point since, PlanResult& result,
                 LatticeState* t) {
   g.poseToState(goal, &t->x, &t->y, &t->heading);
   if (result.error == QueryError::kGoalInCollision && options.any_heading) {
@@ -275,7 +294,7 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
   if (result.error == QueryError::kNone) return true;
   if (result.error != QueryError::kGoalInCollision || options.tolerance <= 0.0) return false;
   const GoalChoice c = nearestReachableGoal(g, goal, options.tolerance, s.x, s.y, &stop);
-  result.goal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - call_start).count();
+  result.goal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
   char tol[64];
   std::snprintf(tol, sizeof tol, "%.3f m", options.tolerance);
   switch (c.outcome) {
@@ -306,21 +325,96 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
   return true;
 }
 
+/// The escapes from start state `s`, in collision (`collision` says how), as StartOptions
+/// allow. False if that is final: no escape (result.error kStartInCollision), or `stop` came first
+/// (result.search.status says which).
+bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions& options, const GridStop& stop,
+                const std::string& collision, PlanResult& result, std::unique_ptr<StartEscape>* escape) {
+  if (g.config().backward_search) {
+    result.error = QueryError::kStartInCollision;
+    result.message = collision + "; a start escape needs a forward search, and backward_search is set";
+    return false;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  escape->reset(new StartEscape(g, s, options.tolerance, options.penalty, &stop));
+  result.escape_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  switch ((*escape)->outcome()) {
+    case StartEscape::Outcome::kStopped:
+      result.error = QueryError::kNone;
+      result.message.clear();
+      result.search.status = stoppedStatus(stop);
+      return false;
+    case StartEscape::Outcome::kNoExit: {
+      char buf[240];
+      std::snprintf(buf, sizeof buf, "; no collision-free pose within the start tolerance of %.3f m can be reached "
+                    "by motions across inscribed cells and the %zu obstacle cell(s) under the robot", options.tolerance,
+                    (*escape)->cellsUnderStart());
+      result.error = QueryError::kStartInCollision;
+      result.message = collision + buf;
+      return false;
+    }
+    case StartEscape::Outcome::kFound:
+      break;
+  }
+  result.start_escaped = true;
+  return true;
+}
+
+/// How `solution` (null: none yet) left the start's collision, for PlanResult::escape_message.
+std::string describeEscape(const std::string& collision, const StartEscape& escape, const StartOptions& options,
+                           const LatticeSolution* solution) {
+  char buf[400];
+  if (solution == nullptr) {
+    std::snprintf(buf, sizeof buf, "; %zu collision-free pose(s) can be reached by leaving it within the start "
+                  "tolerance of %.3f m, but no path was found from them", escape.exits().size(), options.tolerance);
+    return collision + buf;
+  }
+  const std::vector<Pose2D>& p = solution->poses;
+  double length = 0.0;
+  for (std::size_t k = 1; k < solution->escape_poses; ++k) length += std::hypot(p[k].x - p[k - 1].x, p[k].y - p[k - 1].y);
+  std::snprintf(buf, sizeof buf, "; the path leaves it by %.3f m of motion (escape cost %.3f) to the collision-free "
+                "pose %s, crossing only inscribed cells and the %zu obstacle cell(s) under the robot (start tolerance "
+                "%.3f m, escape penalty %g); its bounds are relative to the optimum with such an escape allowed",
+                length, static_cast<double>(solution->escape_cost) / kCostUnitsPerMetre,
+                poseText(p[solution->escape_poses - 1]).c_str(), escape.cellsUnderStart(), options.tolerance,
+                options.penalty);
+  return collision + buf;
+}
+
 }  // namespace
 
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
                                 const PlannerConfig& algorithm, const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
+  return plan(start, goal, StartOptions(), goal_options, algorithm, limits, on_solution);
+}
+
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const StartOptions& start_options,
+                                const GoalOptions& goal_options, const PlannerConfig& algorithm,
+                                const SearchLimits& limits,
+                                const std::function<void(const LatticeSolution&)>& on_solution) {
   if (!std::isfinite(goal_options.tolerance) || goal_options.tolerance < 0.0) {
     throw std::invalid_argument("the goal tolerance must be finite and >= 0 (metres)");
+  }
+  if (!std::isfinite(start_options.tolerance) || start_options.tolerance < 0.0) {
+    throw std::invalid_argument("the start tolerance must be finite and >= 0 (metres)");
+  }
+  if (!std::isfinite(start_options.penalty) || start_options.penalty < 1.0) {
+    throw std::invalid_argument("the start escape penalty must be finite and >= 1");
   }
   const bool any_heading = goal_options.any_heading;
   const auto call_start = std::chrono::steady_clock::now();
   const LatticeGraph& g = *impl_->graph;
   PlanResult result;
   result.error = checkQuery(start, goal, &result.message);
+  // A start in collision may be left under StartOptions; the goal still gets its checks.
+  std::string start_collision;
+  if (result.error == QueryError::kStartInCollision && start_options.tolerance > 0.0) {
+    start_collision = result.message;
+    result.error = checkPose(g, goal, false, &result.message);
+  }
   // Only a goal in collision may still be planned for: then both poses are finite and inside
-  // the map (and the start valid), which poseToState needs.
+  // the map (and the start valid, or to be left), which poseToState needs.
   if (result.error != QueryError::kNone && result.error != QueryError::kGoalInCollision) return result;
   std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
   // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
@@ -333,7 +427,15 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   }
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
-  if (!chooseGoal(g, s, goal, goal_options, stop, call_start, result, &t)) return result;
+  std::unique_ptr<StartEscape> escape;
+  if (!start_collision.empty() && !leaveStart(g, s, start_options, stop, start_collision, result, &escape)) return result;
+  // With an escape, goals are reachable if they are from its cheapest exit.
+  const LatticeState reach_from =
+      escape ? std::min_element(escape->exits().begin(), escape->exits().end(), [](const auto& a, const auto& b) {
+                 return a.cost < b.cost;
+               })->state
+             : s;
+  if (!chooseGoal(g, reach_from, goal, goal_options, stop, std::chrono::steady_clock::now(), result, &t)) return result;
   result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
   // Algorithms that read only the anchor do not need the inadmissible grids.
   const bool uses_inadmissible = (algorithm.algorithm == Algorithm::kAmhaStar || algorithm.algorithm == Algorithm::kMhaStar) &&
@@ -364,19 +466,27 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   }
   LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward, any_heading,
                          kinematic);
-  // Solution paths run start ... goal; an any-heading goal's virtual state ends them.
+  if (escape) {
+    std::vector<std::pair<LatticeState, Cost>> exits;
+    for (const StartEscape::Exit& e : escape->exits()) exits.emplace_back(e.state, e.cost);
+    problem.startAtExits(exits);
+  }
+  // Solution paths run start ... goal; an any-heading goal's virtual state ends them, and an
+  // escape's virtual start begins them (its poses are put back by prependEscape).
   auto lattice_path = [&](std::vector<StateId>& path) {
     if (backward) std::reverse(path.begin(), path.end());
     if (!path.empty() && path.back() == problem.virtualGoal()) path.pop_back();
+    if (!path.empty() && path.front() == problem.virtualStart()) path.erase(path.begin());
   };
   SearchLimits remaining = limits;
-  const double offset = result.goal_seconds + result.heuristic_seconds;
+  const double offset = result.escape_seconds + result.goal_seconds + result.heuristic_seconds;
   remaining.time_limit_s = std::max(0.0, limits.time_limit_s - offset);
   SolutionCallback cb = [&](const Solution& sol) {
     LatticeSolution ls;
     ls.search = sol;
     lattice_path(ls.search.path);
     ls.poses = impl_->posesOf(problem, ls.search.path);
+    if (escape) impl_->prependEscape(*escape, s, problem.state(ls.search.path.front()), ls);
     ls.elapsed_total_s = sol.elapsed_s + offset;
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
@@ -384,6 +494,10 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const G
   result.search = planner->search(problem, remaining, cb);
   for (Solution& sol : result.search.solutions) lattice_path(sol.path);
   if (any_heading && !result.solutions.empty()) result.planned_goal->theta = result.solutions.back().poses.back().theta;
+  if (escape) {
+    result.escape_message = describeEscape(start_collision, *escape, start_options,
+                                           result.solutions.empty() ? nullptr : &result.solutions.back());
+  }
   return result;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace amha {
 namespace lattice {
@@ -104,6 +105,10 @@ StateId LatticeProblem::id(int x, int y, int heading) {
 
 void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   out.clear();
+  if (s == virtual_start_) {  // a start in collision: on to each exit, at its escape cost
+    out = start_exits_;
+    return;
+  }
   if (s == virtual_goal_) {  // forward: the end; backward: the start, joined to the goal's cell
     if (backward_) out = into_goal_cell_;
     return;
@@ -126,6 +131,29 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   // Any heading at the goal's cell will do: on to the virtual goal, free (the search core allows
   // cost 0 on edges that lie on no cycle: nothing leaves the virtual goal).
   if (virtual_goal_ != kNoState && st.x == goal_x_ && st.y == goal_y_) out.push_back(Edge{virtual_goal_, 0});
+}
+
+void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost>>& exits) {
+  if (backward_) throw std::logic_error("LatticeProblem::startAtExits: forward searches only");
+  if (exits.empty()) throw std::logic_error("LatticeProblem::startAtExits: no exit");
+  start_exits_.clear();
+  std::size_t best = 0;
+  double best_f = INFINITY;
+  for (std::size_t k = 0; k < exits.size(); ++k) {
+    const LatticeState& e = exits[k].first;
+    start_exits_.push_back(Edge{id(e.x, e.y, e.heading), exits[k].second});
+    const HeuristicValue h = anchor(e.x, e.y, e.heading);
+    const double f = static_cast<double>(exits[k].second) + (h == kInfiniteHeuristic ? INFINITY : h);
+    if (f < best_f) {
+      best_f = f;
+      best = k;
+    }
+  }
+  // Not in the paged index: a state of its own, which state() reads as that exit.
+  const LatticeState& e = exits[best].first;
+  virtual_start_ = static_cast<StateId>(states_.size());
+  states_.push_back((static_cast<std::uint64_t>(e.y) * width_ + e.x) << 16 | static_cast<std::uint64_t>(e.heading));
+  start_ = virtual_start_;
 }
 
 const LatticeAction* LatticeProblem::actionBetween(StateId from, StateId to, Cost* cost) const {

@@ -130,6 +130,12 @@ bool validWeight(double w) { return std::isfinite(w) && w >= 1.0; }
 
 }  // namespace
 
+std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh, const std::string& text) {
+  std::vector<std::array<double, 2>> out = parseFootprintString(pnh, text);
+  if (!out.empty() && out.size() < 3) bad(pnh, "footprint", "needs at least 3 points");
+  return out;
+}
+
 std::string normaliseFrame(const std::string& frame) {
   return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
 }
@@ -182,6 +188,8 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
+  p.start_tolerance = getDouble(pnh, "start_tolerance", p.start_tolerance, 0.0, 1e3);
+  p.start_escape_penalty = getDouble(pnh, "start_escape_penalty", p.start_escape_penalty, 1.0, 1e3);
   // Frames and server.
   p.global_frame = normaliseFrame(getString(pnh, "global_frame", p.global_frame));
   p.robot_base_frame = normaliseFrame(getString(pnh, "robot_base_frame", p.robot_base_frame));

@@ -13,6 +13,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "amha_planner/ros/conversions.h"
+#include "amha_planner/ros/reconfigure.h"
 
 namespace amha_planner {
 
@@ -102,13 +103,15 @@ void moveResponse(Plan::Response&& in, Result* out) {
   out->solutions = std::move(in.solutions);
   out->goal_substituted = in.goal_substituted;
   out->planned_goal = std::move(in.planned_goal);
+  out->start_escaped = in.start_escaped;
+  out->escape_end = std::move(in.escape_end);
 }
 
 }  // namespace
 
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
-    : nh_(nh), pnh_(pnh), params_(loadPlannerParams(pnh)) {
-  queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(params_.max_queued_requests));
+    : nh_(nh), pnh_(pnh), startup_(loadPlannerParams(pnh)), params_(std::make_shared<const PlannerParams>(startup_)) {
+  queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(startup_.max_queued_requests));
   builder_ = std::make_unique<LatestJobRunner>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
 
@@ -140,19 +143,26 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   // Waiting service calls each hold a thread; one more answers BUSY while the queue is full.
   map_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &map_queue_);
   service_spinner_ = std::make_unique<ros::AsyncSpinner>(
-      static_cast<std::uint32_t>(params_.max_queued_requests + 2), &service_queue_);
+      static_cast<std::uint32_t>(startup_.max_queued_requests + 2), &service_queue_);
   action_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &action_queue_);
   map_spinner_->start();
   service_spinner_->start();
   action_spinner_->start();
 
-  ROS_INFO_STREAM("amha_planner: ready; algorithm " << amha::algorithmName(params_.algorithm)
-                  << ", global frame '" << params_.global_frame << "', robot frame '"
-                  << params_.robot_base_frame << "', waiting for a map on "
+  // ~set_parameters (rqt_reconfigure), starting from the loaded values rather than the .cfg's
+  // defaults; its services run on the node's own callback queue.
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<AmhaPlannerConfig>>(reconfigure_mutex_, pnh_);
+  reconfigure_->updateConfig(configFromParams(startup_));
+  reconfigure_->setCallback([this](AmhaPlannerConfig& c, std::uint32_t level) { onReconfigure(c, level); });
+
+  ROS_INFO_STREAM("amha_planner: ready; algorithm " << amha::algorithmName(startup_.algorithm)
+                  << ", global frame '" << startup_.global_frame << "', robot frame '"
+                  << startup_.robot_base_frame << "', waiting for a map on "
                   << map_sub_.getTopic());
 }
 
 PlannerServer::~PlannerServer() {
+  reconfigure_.reset();  // no reconfiguration while the rest goes
   shutting_down_ = true;
   {
     std::lock_guard<std::mutex> lock(flags_mutex_);
@@ -170,6 +180,51 @@ PlannerServer::~PlannerServer() {
   map_updates_sub_.shutdown();
   plan_srv_.shutdown();
   make_plan_srv_.shutdown();
+}
+
+std::shared_ptr<const PlannerParams> PlannerServer::params() const {
+  std::lock_guard<std::mutex> lock(params_mutex_);
+  return params_;
+}
+
+void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
+  const std::shared_ptr<const PlannerParams> current = params();
+  const AmhaPlannerConfig in_force = configFromParams(*current);
+  const std::uint32_t changed = in_force.__level__(config);
+  if (changed == 0) return;  // (also the call at start-up, with the loaded values)
+  const bool rebuild = (changed & kReconfigureRebuild) != 0;
+  auto next = std::make_shared<PlannerParams>();
+  std::string error;
+  bool ok = paramsFromConfig(config, *current, pnh_, next.get(), &error);
+  if (ok && rebuild) {
+    const auto planner = currentPlanner();
+    ok = latticeBuilds(*next, planner ? planner->map().resolution : 0.0, &error);
+  }
+  const std::string what = changedParameters(in_force, config);
+  if (!ok) {
+    ROS_ERROR("amha_planner: reconfiguration refused (%s): %s; the parameters stay as they were", what.c_str(),
+              error.c_str());
+    config = in_force;  // what the reply (and rqt_reconfigure) then shows
+    return;
+  }
+  bool have_map = false;
+  {
+    std::lock_guard<std::mutex> lock(map_mutex_);
+    {
+      std::lock_guard<std::mutex> params_lock(params_mutex_);
+      params_ = std::move(next);
+    }
+    have_map = !last_map_.data.empty();
+    if (rebuild && have_map) {
+      reconfigured_ = true;
+      ++map_version_;  // requests from now on wait for the planner built with them
+    }
+  }
+  if (rebuild && have_map) builder_->post([this] { rebuildPlanner(); });
+  ROS_INFO("amha_planner: reconfigured: %s; %s", what.c_str(),
+           !rebuild ? "in force for the requests that start planning from now on"
+                    : have_map ? "rebuilding the planner from the current map (requests from now on wait for it)"
+                               : "in force from the first map");
 }
 
 std::shared_ptr<lat::LatticePlanner> PlannerServer::currentPlanner() const {
@@ -194,9 +249,10 @@ void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
   // Checked (converted) here, so that a malformed map never replaces a good one; the planner
   // is built from this grid on the builder thread.
   std::shared_ptr<const lat::GridMap> grid;
+  const std::shared_ptr<const PlannerParams> p = params();
   try {
     grid = std::make_shared<const lat::GridMap>(
-        gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells));
+        gridMapFromOccupancy(*msg, p->occupancy, startup_.max_map_cells));
   } catch (const std::exception& e) {
     ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
               msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(), e.what(),
@@ -204,16 +260,22 @@ void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
     return;
   }
   const std::string frame = normaliseFrame(msg->header.frame_id);
-  if (!frame.empty() && frame != params_.global_frame) {
+  if (!frame.empty() && frame != startup_.global_frame) {
     ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
              "map coordinates as '%s' coordinates",
-             frame.c_str(), params_.global_frame.c_str(), params_.global_frame.c_str());
+             frame.c_str(), startup_.global_frame.c_str(), startup_.global_frame.c_str());
   }
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
     last_map_ = *msg;
     ++map_version_;
     unbuilt_grid_ = std::move(grid);
+    // Converted as the parameters said before a reconfiguration changed them: convert it again.
+    const auto now = params();
+    if (now->occupancy.lethal_threshold != p->occupancy.lethal_threshold ||
+        now->occupancy.unknown_is_free != p->occupancy.unknown_is_free) {
+      reconfigured_ = true;
+    }
     unbuilt_updates_ = 0;  // the updates before it are overwritten
     unbuilt_rect_ = lat::CellRect{};
   }
@@ -253,7 +315,7 @@ void PlannerServer::rebuildPlanner() {
   if (in.grid) {
     try {
       planner = in.previous ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
-                            : std::make_shared<lat::LatticePlanner>(in.grid, params_.lattice);
+                            : std::make_shared<lat::LatticePlanner>(in.grid, in.params->lattice);
     } catch (const std::exception& e) {
       in.error = e.what();
     }
@@ -271,12 +333,15 @@ PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
   // its map differs from the new one only in the updates' rectangle.
   in.previous = currentPlanner();
   std::lock_guard<std::mutex> lock(map_mutex_);
+  in.params = params();  // under map_mutex_, as a reconfiguration sets them with reconfigured_
+  in.reconfigured = reconfigured_;
+  reconfigured_ = false;
   in.version = map_version_;
   in.updates = unbuilt_updates_;
   in.changed = unbuilt_rect_;
   const std::shared_ptr<const lat::GridMap> full_grid = std::move(unbuilt_grid_);
   in.full_map = full_grid != nullptr;
-  if (in.full_map || build_failed_) in.previous = nullptr;
+  if (in.full_map || build_failed_ || in.reconfigured) in.previous = nullptr;
   unbuilt_updates_ = 0;
   unbuilt_grid_ = nullptr;
   unbuilt_rect_ = lat::CellRect{};
@@ -287,15 +352,18 @@ PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
   // only its cells are converted again.
   const lat::GridMap* base = in.full_map ? full_grid.get() : in.previous ? &in.previous->map() : nullptr;
   try {
-    if (in.full_map && in.changed.empty()) {
+    if (in.reconfigured) {  // every cell again, with the new conversion
+      in.grid = std::make_shared<const lat::GridMap>(
+          gridMapFromOccupancy(last_map_, in.params->occupancy, startup_.max_map_cells));
+    } else if (in.full_map && in.changed.empty()) {
       in.grid = full_grid;
     } else if (base != nullptr) {
       auto patched = std::make_shared<lat::GridMap>(*base);
-      convertOccupancyCells(last_map_, in.changed, params_.occupancy, patched.get());
+      convertOccupancyCells(last_map_, in.changed, in.params->occupancy, patched.get());
       in.grid = std::move(patched);
     } else {  // after a failed build: the current planner's map may be an older one
       in.grid = std::make_shared<const lat::GridMap>(
-          gridMapFromOccupancy(last_map_, params_.occupancy, params_.max_map_cells));
+          gridMapFromOccupancy(last_map_, in.params->occupancy, startup_.max_map_cells));
     }
   } catch (const std::exception& e) {
     in.error = e.what();
@@ -327,14 +395,15 @@ bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner,
 }
 
 void PlannerServer::logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const {
-  std::string what = in.full_map ? "map" : "";
+  // A reconfiguration of the robot or the map conversion rebuilds the current map in full.
+  std::string what = in.full_map ? "map" : in.reconfigured ? "map (new parameters)" : "";
   if (in.updates > 0) {
     what += (in.full_map ? " + " : "") + std::to_string(in.updates) +
             (in.updates == 1 ? " update" : " updates (one build)");
   }
   if (!in.error.empty()) {
     const char* kept = have_planner ? "plans keep the previous planner" : "requests get NO_MAP";
-    if (in.full_map) {
+    if (in.full_map || in.reconfigured) {
       ROS_ERROR("amha_planner: %s %ux%u refused: %s; %s", what.c_str(), in.width, in.height,
                 in.error.c_str(), kept);
     } else {  // every update of a refused map would say the same
@@ -344,7 +413,7 @@ void PlannerServer::logBuild(const BuildInput& in, double seconds, bool have_pla
     return;
   }
   // Updates can come several times a second (costmap_2d): one line each only when debugging.
-  ROS_LOG(in.full_map ? ros::console::levels::Info : ros::console::levels::Debug,
+  ROS_LOG(in.full_map || in.reconfigured ? ros::console::levels::Info : ros::console::levels::Debug,
           ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
           "ready in %.2f s%s", what.c_str(), in.width, in.height, in.resolution, seconds,
           incremental ? " (rebuilt near the change only)" : "");
@@ -365,16 +434,16 @@ bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {
   return true;
 }
 
-bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
+bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
                                   geometry_msgs::PoseStamped* out, Plan::Response* res) {
   const char* what = is_start ? "start" : "goal";
-  const std::string& global = params_.global_frame;
+  const std::string& global = startup_.global_frame;
   std::string frame = normaliseFrame(in.header.frame_id);
   if (frame.empty() && is_start) {
     // The robot's current pose.
     try {
-      const auto t = tf_buffer_.lookupTransform(global, params_.robot_base_frame, ros::Time(0),
-                                                ros::Duration(params_.tf_timeout));
+      const auto t = tf_buffer_.lookupTransform(global, startup_.robot_base_frame, ros::Time(0),
+                                                ros::Duration(tf_timeout));
       out->header = t.header;
       out->header.frame_id = global;
       out->pose.position.x = t.transform.translation.x;
@@ -384,7 +453,7 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
     } catch (const tf2::TransformException& e) {
       res->status = Status::TF_ERROR;
       res->message = "start has no frame, so the robot's pose is used, but the transform " +
-                     global + " <- " + params_.robot_base_frame + " is unavailable: " + e.what();
+                     global + " <- " + startup_.robot_base_frame + " is unavailable: " + e.what();
       return false;
     }
     std::string why;
@@ -409,7 +478,7 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
   }
   try {
     const auto t = tf_buffer_.lookupTransform(global, frame, in.header.stamp,
-                                              ros::Duration(params_.tf_timeout));
+                                              ros::Duration(tf_timeout));
     tf2::doTransform(in, *out, t);
   } catch (const tf2::TransformException& e) {
     res->status = Status::TF_ERROR;
@@ -425,7 +494,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
   Plan::Response res;
   res.request_id = id;
   res.status = Status::INTERNAL_ERROR;
-  const std::string& frame = params_.global_frame;
+  const std::string& frame = startup_.global_frame;
   const ros::Time stamp = ros::Time::now();
   res.path.header.frame_id = frame;
   res.path.header.stamp = stamp;
@@ -454,14 +523,16 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "no valid map received on " + map_sub_.getTopic() + " yet";
       return res;
     }
+    // The parameters in force now hold for the whole request, whatever changes meanwhile.
+    const std::shared_ptr<const PlannerParams> params = this->params();
     amha::PlannerConfig config;
     std::string error;
-    if (!searchConfigFor(params_, r.algorithm, r.w1, r.w2, &config, &error)) {
+    if (!searchConfigFor(*params, r.algorithm, r.w1, r.w2, &config, &error)) {
       res.status = Status::INVALID_REQUEST;
       res.message = error;
       return res;
     }
-    const double budget = r.time_budget == 0.0 ? params_.default_time_budget : r.time_budget;
+    const double budget = r.time_budget == 0.0 ? params->default_time_budget : r.time_budget;
     if (!std::isfinite(budget) || budget < 0.0) {
       res.status = Status::INVALID_REQUEST;
       res.message = "time_budget must be finite and >= 0 (0: the default)";
@@ -472,19 +543,27 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)";
       return res;
     }
+    if (!std::isfinite(r.start_tolerance) || r.start_tolerance < 0.0) {
+      res.status = Status::INVALID_REQUEST;
+      res.message = "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)";
+      return res;
+    }
     geometry_msgs::PoseStamped start, goal;
-    if (!toGlobalFrame(r.start, true, &start, &res)) return res;
-    if (!toGlobalFrame(r.goal, false, &goal, &res)) return res;
+    if (!toGlobalFrame(r.start, true, params->tf_timeout, &start, &res)) return res;
+    if (!toGlobalFrame(r.goal, false, params->tf_timeout, &goal, &res)) return res;
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;
     limits.time_limit_s = budget;
     limits.cancel = &cancel;
-    limits.max_memory_bytes = static_cast<std::size_t>(params_.max_memory_mb * 1024.0 * 1024.0);
+    limits.max_memory_bytes = static_cast<std::size_t>(params->max_memory_mb * 1024.0 * 1024.0);
 
     lat::GoalOptions goal_options;
     goal_options.tolerance = r.goal_tolerance;
-    goal_options.any_heading = r.ignore_goal_heading || params_.ignore_goal_heading;
+    goal_options.any_heading = r.ignore_goal_heading || params->ignore_goal_heading;
+    lat::StartOptions start_options;
+    start_options.tolerance = r.start_tolerance > 0.0 ? r.start_tolerance : params->start_tolerance;
+    start_options.penalty = params->start_escape_penalty;
 
     // Each improvement is published as it is found (~solutions, ~plan, ~footprints).
     std::vector<amha::StateId> previous_ids;  // state ids identify a path exactly
@@ -500,14 +579,15 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
         const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
         const lat::Pose2D& goal_mark = free_end ? solution.poses.back() : g;
         markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, goal_mark, frame, stamp,
-                                              params_.marker_spacing));
+                                              params->marker_spacing));
       }
       if (sink) sink(m);
       if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
       res.solutions.push_back(std::move(m));
     };
-    const lat::PlanResult result = planner->plan(s, g, goal_options, config, limits, on_solution);
-    res.planning_time = result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds;
+    const lat::PlanResult result = planner->plan(s, g, start_options, goal_options, config, limits, on_solution);
+    res.planning_time =
+        result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds + result.escape_seconds;
     if (result.error == lat::QueryError::kNone) {
       ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
                 result.heuristic_seconds);
@@ -521,8 +601,15 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     }
     res.goal_substituted = result.goal_substituted;
     if (result.planned_goal) res.planned_goal = poseStampedFromPose2D(*result.planned_goal, frame, stamp);
-    // Told after the outcome: "...; goal (..) is in collision; planning to ... instead".
-    const std::string substitution = result.goal_substituted ? "; " + result.message : "";
+    res.start_escaped = result.start_escaped;
+    if (result.start_escaped && !result.solutions.empty()) {
+      const lat::LatticeSolution& best = result.solutions.back();
+      res.escape_end = poseStampedFromPose2D(best.poses[best.escape_poses - 1], frame, stamp);
+    }
+    // Told after the outcome: "...; start (..) is in collision; the path leaves it by ...",
+    // "...; goal (..) is in collision; planning to ... instead".
+    std::string substitution = result.start_escaped ? "; " + result.escape_message : "";
+    if (result.goal_substituted) substitution += "; " + result.message;
     const auto status = result.search.status;
     if (!res.solutions.empty()) {
       const PlanSolution& best = res.solutions.back();
@@ -574,7 +661,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
         break;
       case amha::SearchStatus::kMemoryLimit:
         res.status = Status::MEMORY_EXHAUSTED;
-        res.message = "memory cap of " + fmt(params_.max_memory_mb, 0) +
+        res.message = "memory cap of " + fmt(params->max_memory_mb, 0) +
                       " MB (~max_memory_mb) reached before any path was found";
         break;
       case amha::SearchStatus::kCancelled:
@@ -609,8 +696,8 @@ Plan::Response PlannerServer::runBlocking(const Request& request) {
     Plan::Response busy;
     busy.request_id = id;
     busy.status = Status::BUSY;
-    busy.message = busyMessage(params_.max_queued_requests);
-    busy.path.header.frame_id = params_.global_frame;
+    busy.message = busyMessage(startup_.max_queued_requests);
+    busy.path.header.frame_id = startup_.global_frame;
     return busy;
   }
   return response.get();
@@ -638,6 +725,7 @@ bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
   r.w2 = req.w2;
   r.goal_tolerance = req.goal_tolerance;
   r.ignore_goal_heading = req.ignore_goal_heading;
+  r.start_tolerance = req.start_tolerance;
   res = runBlocking(r);
   logOutcome("plan", res);
   return true;
@@ -653,7 +741,7 @@ bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
   logOutcome("make_plan", out);
   // Like move_base's make_plan: an empty plan means failure (the log says why).
   if (out.status == Status::SUCCESS) res.plan = out.path;
-  res.plan.header.frame_id = params_.global_frame;
+  res.plan.header.frame_id = startup_.global_frame;
   res.plan.header.stamp = out.path.header.stamp;
   return true;
 }
@@ -669,6 +757,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
   r.w2 = g->w2;
   r.goal_tolerance = g->goal_tolerance;
   r.ignore_goal_heading = g->ignore_goal_heading;
+  r.start_tolerance = g->start_tolerance;
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
   auto flag = newCancelFlag();
@@ -707,8 +796,8 @@ void PlannerServer::onGoal(GoalHandle goal) {
     PlanAnytimeResult busy;
     busy.request_id = id;
     busy.status = Status::BUSY;
-    busy.message = busyMessage(params_.max_queued_requests);
-    busy.path.header.frame_id = params_.global_frame;
+    busy.message = busyMessage(startup_.max_queued_requests);
+    busy.path.header.frame_id = startup_.global_frame;
     ROS_WARN("amha_planner: plan_anytime request %u: BUSY", id);
     goal.setRejected(busy, busy.message);
     return;

@@ -25,48 +25,13 @@ namespace {
 
 // Cheapest cost from s to each state, by Dijkstra over the graph's own edges.
 std::vector<Cost> costsFrom(const LatticeGraph& g, const LatticeState& s) {
-  const int w = g.width(), nh = g.numHeadings();
-  auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y) * w + x) * nh + h; };
-  std::vector<Cost> d(static_cast<std::size_t>(w) * g.height() * nh, kInfiniteCost);
-  using Item = std::pair<Cost, std::tuple<int, int, int>>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-  d[index(s.x, s.y, s.heading)] = 0;
-  q.push({0, {s.x, s.y, s.heading}});
-  while (!q.empty()) {
-    const auto [c, st] = q.top();
-    q.pop();
-    const auto [x, y, h] = st;
-    if (c != d[index(x, y, h)]) continue;
-    for (const LatticeAction* a = g.actionsBegin(h); a != g.actionsEnd(h); ++a) {
-      const Cost e = g.edgeCost(x, y, *a);
-      if (e == kInvalidEdge) continue;
-      const std::size_t i = index(x + a->dx, y + a->dy, a->end_heading);
-      if (c + e < d[i]) {
-        d[i] = c + e;
-        q.push({d[i], {x + a->dx, y + a->dy, a->end_heading}});
-      }
-    }
-  }
-  return d;
+  return test::dijkstraFrom(g, s, [&](int x, int y, const LatticeAction& a) { return g.edgeCost(x, y, a); });
 }
 
 Cost cheapestToCell(const LatticeGraph& g, const std::vector<Cost>& d, int x, int y) {
   Cost best = kInfiniteCost;
   for (int h = 0; h < g.numHeadings(); ++h) best = std::min(best, d[(static_cast<std::size_t>(y) * g.width() + x) * g.numHeadings() + h]);
   return best;
-}
-
-LatticeConfig configFor(unsigned seed) {
-  LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.footprint = test::rectangle(0.09, 0.05);
-  c.allow_reverse = seed % 3 == 0;
-  c.cost_penalty = seed % 2 ? 4.0 : 1.0;
-  c.time_to_turn_45 = 1.0;
-  c.grid_anchor = seed % 4 != 1;
-  c.coarse_anchor = seed % 4 != 2;
-  c.anchor_turn_term = seed % 5 == 0;
-  return c;
 }
 
 // Every algorithm, forward and backward, on the search problem itself: every solution is a
@@ -78,7 +43,7 @@ TEST(AnyGoalHeading, SolutionsAgainstAnExhaustiveDijkstraToEveryHeading) {
   int queries = 0, cheaper_than_own_heading = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
     const auto map = test::randomMap(34, 34, 0.05, seed, 11, seed % 2 ? 150 : 0);
-    const LatticeGraph g(map, configFor(seed));
+    const LatticeGraph g(map, test::smallRobot(seed));
     const HeuristicGridBuilder b(g);
     const test::ValidatorModel model = test::modelFor(g);
     std::mt19937 rng(seed * 31);
@@ -138,7 +103,7 @@ TEST(AnyGoalHeading, SolutionsAgainstAnExhaustiveDijkstraToEveryHeading) {
 TEST(AnyGoalHeading, AnchorStaysConsistent) {
   for (unsigned seed = 1; seed <= 8; ++seed) {
     const auto map = test::randomMap(30, 30, 0.05, seed + 50, 8, seed % 2 ? 150 : 0);
-    const LatticeGraph g(map, configFor(seed));
+    const LatticeGraph g(map, test::smallRobot(seed));
     const HeuristicGridBuilder b(g);
     std::mt19937 rng(seed);
     LatticeState s{0, 0, 0}, t{0, 0, 0};
@@ -179,7 +144,7 @@ TEST(AnyGoalHeading, AnchorStaysConsistent) {
 TEST(AnyGoalHeading, CoarseDistancesAreTheMinimumOverHeadings) {
   const auto map = test::randomMap(60, 50, 0.05, 9, 10, 100);
   map->cost[30 * 60 + 20] = kFreeCost;  // the goal's block is passable
-  LatticeConfig c = configFor(3);
+  LatticeConfig c = test::smallRobot(3);
   const LatticeGraph g(map, c);
   for (const int block : {2, 3}) {
     const CoarseLattice coarse(g, block);

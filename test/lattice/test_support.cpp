@@ -1,7 +1,9 @@
 #include "test_support.h"
 
 #include <cstdlib>
+#include <queue>
 #include <random>
+#include <tuple>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -43,6 +45,46 @@ std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, uns
     }
   }
   return m;
+}
+
+std::vector<Cost> dijkstraFrom(const LatticeGraph& g, const LatticeState& s,
+                               const std::function<Cost(int, int, const LatticeAction&)>& edge) {
+  const int w = g.width(), nh = g.numHeadings();
+  auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y) * w + x) * nh + h; };
+  std::vector<Cost> d(static_cast<std::size_t>(w) * g.height() * nh, kInfiniteCost);
+  using Item = std::pair<Cost, std::tuple<int, int, int>>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  d[index(s.x, s.y, s.heading)] = 0;
+  q.push({0, {s.x, s.y, s.heading}});
+  while (!q.empty()) {
+    const auto [c, st] = q.top();
+    q.pop();
+    const auto [x, y, h] = st;
+    if (c != d[index(x, y, h)]) continue;
+    for (const LatticeAction* a = g.actionsBegin(h); a != g.actionsEnd(h); ++a) {
+      const Cost e = edge(x, y, *a);
+      if (e < 0) continue;
+      const std::size_t i = index(x + a->dx, y + a->dy, a->end_heading);
+      if (c + e < d[i]) {
+        d[i] = c + e;
+        q.push({d[i], {x + a->dx, y + a->dy, a->end_heading}});
+      }
+    }
+  }
+  return d;
+}
+
+LatticeConfig smallRobot(unsigned seed) {
+  LatticeConfig c;
+  c.turning_radius = 0.2;
+  c.footprint = rectangle(0.09, 0.05);
+  c.allow_reverse = seed % 3 == 0;
+  c.cost_penalty = seed % 2 ? 4.0 : 1.0;
+  c.time_to_turn_45 = 1.0;
+  c.grid_anchor = seed % 4 != 1;
+  c.coarse_anchor = seed % 4 != 2;
+  c.anchor_turn_term = seed % 5 == 0;
+  return c;
 }
 
 std::vector<std::array<double, 2>> rectangle(double hl, double hw) {

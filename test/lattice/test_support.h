@@ -1,10 +1,14 @@
 // Helpers for the lattice tests: shared data paths, temp dirs, small random maps.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/lattice_problem.h"
 
 namespace amha {
 namespace lattice {
@@ -18,6 +22,16 @@ std::string tempDir();
 /// cell costs in 0..cost_max elsewhere; a border of free cells is left around (x0, y0) spots.
 std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
                                    int obstacles, int cost_max);
+/// The cheapest cost from s to every state, indexed (y * width + x) * headings + heading, by a
+/// Dijkstra over the graph's actions; edge(x, y, a) is the cost of a from (x, y), or < 0 for
+/// none (kInfiniteCost where unreachable).
+std::vector<Cost> dijkstraFrom(const LatticeGraph& g, const LatticeState& s,
+                               const std::function<Cost(int, int, const LatticeAction&)>& edge);
+
+/// A robot 0.18 m x 0.10 m turning on 0.2 m, its reverse motions, cost penalty and anchor
+/// options varied with `seed` (for the random maps of randomMap at 0.05 m).
+LatticeConfig smallRobot(unsigned seed);
+
 /// A small rectangular footprint (half length, half width in metres).
 std::vector<std::array<double, 2>> rectangle(double half_length, double half_width);
 

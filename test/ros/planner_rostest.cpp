@@ -423,6 +423,120 @@ TEST(PlannerNodelet, GoalToleranceReplacesAnObstructedGoalByAReachableOne) {
   expectValidPath(out.result->path, kRoomStart, out.result->planned_goal, testMap());
 }
 
+// `map` with every cell whose centre lies inside the footprint at `p`, grown by `margin` metres
+// on each side, made free: the obstacle cells a start escape may cross.
+nav_msgs::OccupancyGrid clearedUnder(nav_msgs::OccupancyGrid map, const geometry_msgs::Pose& p, double margin) {
+  std::vector<std::array<double, 2>> poly = testFootprint();
+  const double yaw = yawOf(p), c = std::cos(yaw), sn = std::sin(yaw);
+  for (auto& v : poly) {
+    const double x = v[0] + std::copysign(margin, v[0]), y = v[1] + std::copysign(margin, v[1]);
+    v = {p.position.x + c * x - sn * y, p.position.y + sn * x + c * y};
+  }
+  const double r = map.info.resolution;
+  const unsigned w = map.info.width;
+  for (std::size_t k = 0; k < map.data.size(); ++k) {
+    const double x = map.info.origin.position.x + (k % w + 0.5) * r;
+    const double y = map.info.origin.position.y + (k / w + 0.5) * r;
+    bool inside = false;  // even-odd rule
+    for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+      if ((poly[i][1] > y) != (poly[j][1] > y) &&
+          x < poly[i][0] + (y - poly[i][1]) * (poly[j][0] - poly[i][0]) / (poly[j][1] - poly[i][1])) {
+        inside = !inside;
+      }
+    }
+    if (inside) map.data[k] = 0;
+  }
+  return map;
+}
+
+// Where `end` lies on `path` (a pose equal to it), or the path's length if nowhere.
+std::size_t indexOf(const nav_msgs::Path& path, const geometry_msgs::Pose& end) {
+  for (std::size_t k = 0; k < path.poses.size(); ++k) {
+    const auto& q = path.poses[k].pose;
+    if (std::hypot(q.position.x - end.position.x, q.position.y - end.position.y) < 1e-6 &&
+        angleDiff(yawOf(q), yawOf(end)) < 1e-6) {
+      return k;
+    }
+  }
+  return path.poses.size();
+}
+
+// An escape: the path begins at the start, reaches escape_end within the tolerance touching no
+// obstacle but those under the start's footprint, and goes on collision-free to the goal.
+template <class Response>
+void expectEscape(const Response& res, const geometry_msgs::PoseStamped& start,
+                  const geometry_msgs::PoseStamped& goal, double tolerance) {
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_TRUE(res.start_escaped);
+  EXPECT_NE(res.message.find("is in collision"), std::string::npos) << res.message;
+  EXPECT_NE(res.message.find("leaves it by"), std::string::npos) << res.message;
+  EXPECT_NE(res.message.find("relative to the optimum"), std::string::npos) << res.message;
+  EXPECT_EQ(res.escape_end.header.frame_id, "map");
+  const auto& e = res.escape_end.pose.position;
+  EXPECT_LE(std::hypot(e.x - start.pose.position.x, e.y - start.pose.position.y), tolerance + kResolution);
+  const std::size_t k = indexOf(res.path, res.escape_end.pose);
+  ASSERT_LT(k, res.path.poses.size()) << "escape_end is not on the path";
+  ASSERT_GT(k, 0u);
+  nav_msgs::Path escape = res.path, rest = res.path;
+  escape.poses.resize(k + 1);
+  rest.poses.erase(rest.poses.begin(), rest.poses.begin() + static_cast<std::ptrdiff_t>(k));
+  EXPECT_NE(checkPathCollisionFree(escape, testMap(), testFootprint(), kLethal), "") << "the start collides";
+  EXPECT_EQ(checkPathCollisionFree(escape, clearedUnder(testMap(), start.pose, kResolution), testFootprint(), kLethal), "")
+      << "the escape touches an obstacle the robot was not on";
+  expectValidPath(rest, res.escape_end, goal, testMap());
+  EXPECT_LE(std::hypot(res.path.poses.front().pose.position.x - start.pose.position.x,
+                       res.path.poses.front().pose.position.y - start.pose.position.y),
+            kResolution);
+}
+
+TEST(PlannerNodelet, StartToleranceLeavesAStartInCollision) {
+  // Facing away from the block, its rear 0.15 m inside it.
+  const auto at_block = pose(1.9, 4.0, M_PI, "map");
+  Plan srv;
+  srv.request.start = at_block;
+  srv.request.goal = kRoomGoal;
+  srv.request.time_budget = 5.0;
+  ASSERT_TRUE(ros::service::call("/planner/plan", srv));
+  EXPECT_EQ(srv.response.status, Status::INVALID_START) << srv.response.message;
+  EXPECT_FALSE(srv.response.start_escaped);
+  srv.request.start_tolerance = 0.5;
+  ASSERT_TRUE(ros::service::call("/planner/plan", srv));
+  expectEscape(srv.response, at_block, kRoomGoal, 0.5);
+  expectMonotone(srv.response.solutions);
+
+  // The action too, with the same request.
+  const Plan::Request& r = srv.request;
+  PlanAnytimeGoal goal;
+  goal.start = r.start;
+  goal.goal = r.goal;
+  goal.time_budget = r.time_budget;
+  goal.start_tolerance = r.start_tolerance;
+  const ActionOutcome out = runAction(goal);
+  ASSERT_TRUE(out.result);
+  EXPECT_EQ(out.state, actionlib::SimpleClientGoalState::SUCCEEDED);
+  expectEscape(*out.result, at_block, kRoomGoal, 0.5);
+
+  // Deep in the block no escape crosses only what the robot stands on.
+  srv.request.start = pose(2.5, 4.0, 0.0, "map");
+  ASSERT_TRUE(ros::service::call("/planner/plan", srv));
+  EXPECT_EQ(srv.response.status, Status::INVALID_START) << srv.response.message;
+  EXPECT_NE(srv.response.message.find("within the start tolerance of 0.500 m"), std::string::npos)
+      << srv.response.message;
+  // ~make_plan has no start tolerance: ~start_tolerance (0 in the test's parameters) refuses it.
+  nav_msgs::GetPlan mp;
+  mp.request.start = at_block;
+  mp.request.goal = kRoomGoal;
+  ASSERT_TRUE(ros::service::call("/planner/make_plan", mp));
+  EXPECT_TRUE(mp.response.plan.poses.empty());
+  // A bad tolerance.
+  srv.request.start = at_block;
+  for (const double bad : {-0.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    srv.request.start_tolerance = bad;
+    ASSERT_TRUE(ros::service::call("/planner/plan", srv));
+    EXPECT_EQ(srv.response.status, Status::INVALID_REQUEST) << bad;
+  }
+}
+
 TEST(PlannerNodelet, IgnoreGoalHeadingEndsWithTheCheapestHeading) {
   // A goal 1.5 m ahead, facing back: held to its heading the robot must turn around there;
   // free, it drives straight in.
@@ -577,15 +691,7 @@ TEST(PlannerNodelet, BadMapsAreRefusedAndTheCurrentMapKept) {
 TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
   std::atomic<int> feedback{0};  // before the client: see ActionSendsOneFeedbackPerSolution
   Client client("/planner/plan_anytime", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
-  PlanAnytimeGoal goal;
-  goal.start = kMazeStart;
-  goal.goal = kMazeGoal;
-  goal.time_budget = 3.0;
-  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
-                  [&](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
-  for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
-  ASSERT_GT(feedback.load(), 0);
+  ASSERT_TRUE(sendAndAwaitFeedback(client, kMazeStart, kMazeGoal, 3.0, feedback));
   EXPECT_FALSE(client.getState().isDone()) << "the plan should still be running";
   // The new map closes the maze's door: the running plan must not notice.
   g_map_pub.publish(testMapWithExtraBlock());
@@ -697,15 +803,7 @@ TEST(PlannerNodelet, ASecondRequestWaitsAndAThirdGetsBusy) {
   // planner_nodelet.test sets ~max_queued_requests to 1.
   std::atomic<int> feedback{0};  // before the client: see ActionSendsOneFeedbackPerSolution
   Client client("/planner/plan_anytime", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(5)));
-  PlanAnytimeGoal goal;
-  goal.start = kMazeStart;
-  goal.goal = kMazeGoal;
-  goal.time_budget = 2.0;
-  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
-                  [&](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
-  for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
-  ASSERT_GT(feedback.load(), 0);
+  ASSERT_TRUE(sendAndAwaitFeedback(client, kMazeStart, kMazeGoal, 2.0, feedback));
   auto second = std::async(std::launch::async, [] { return plan(kRoomStart, kRoomGoal, 5.0); });
   ros::WallDuration(0.3).sleep();  // let the second request reach the queue
   const auto t0 = Clock::now();

@@ -134,6 +134,21 @@ std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::O
   return "";
 }
 
+bool sendAndAwaitFeedback(actionlib::SimpleActionClient<PlanAnytimeAction>& client,
+                          const geometry_msgs::PoseStamped& start, const geometry_msgs::PoseStamped& goal,
+                          double budget, std::atomic<int>& feedback) {
+  if (!client.waitForServer(ros::Duration(5))) return false;
+  PlanAnytimeGoal g;
+  g.start = start;
+  g.goal = goal;
+  g.time_budget = budget;
+  client.sendGoal(g, actionlib::SimpleActionClient<PlanAnytimeAction>::SimpleDoneCallback(),
+                  actionlib::SimpleActionClient<PlanAnytimeAction>::SimpleActiveCallback(),
+                  [&feedback](const PlanAnytimeFeedbackConstPtr&) { ++feedback; });
+  for (int i = 0; i < 3000 && feedback == 0; ++i) ros::WallDuration(0.01).sleep();
+  return feedback > 0;
+}
+
 bool waitForSubscriber(const ros::Publisher& pub, double seconds) {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(seconds);
   while (pub.getNumSubscribers() == 0 && ros::WallTime::now() < deadline) {

@@ -3,13 +3,18 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <string>
 #include <vector>
+
+#include <actionlib/client/simple_action_client.h>
 
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
 #include <ros/publisher.h>
+
+#include "amha_planner/PlanAnytimeAction.h"
 
 namespace amha_planner {
 namespace test {
@@ -45,6 +50,13 @@ std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::O
 /// Waits up to `seconds` for `pub` to have a subscriber (a message published before the
 /// connection exists is lost); true once it has one.
 bool waitForSubscriber(const ros::Publisher& pub, double seconds);
+
+/// Sends a ~plan_anytime goal from start to goal with `budget` seconds through `client`,
+/// counting its feedback in `feedback` (which must outlive the client), and waits up to 30 s for
+/// the first: true once it came (the goal is then planning, or done).
+bool sendAndAwaitFeedback(actionlib::SimpleActionClient<PlanAnytimeAction>& client,
+                          const geometry_msgs::PoseStamped& start, const geometry_msgs::PoseStamped& goal,
+                          double budget, std::atomic<int>& feedback);
 
 geometry_msgs::PoseStamped pose(double x, double y, double yaw, const std::string& frame);
 double yawOf(const geometry_msgs::Pose& p);

@@ -10,7 +10,8 @@ within its bounds or a clean error status; the node must stay alive; its memory 
 A path is checked independently of the planner: in the global frame, starting at the start and
 ending at the goal (within a cell and half a heading bin), no jump longer than 1.5 cells, the
 robot's circle touching no obstacle, unknown or off-map cell on one of the maps that were in use
-while the request ran, cost >= straight-line distance; along the solutions costs, bounds and
+while the request ran (a path leaving a start in collision: before its escape_end, none but those
+under the robot at the start), cost >= straight-line distance; along the solutions costs, bounds and
 certified bounds never increase and 1 <= certified <= bound.
 
 Writes a JSON summary (--json) and prints one; exits 1 on any failure."""
@@ -83,8 +84,9 @@ class Grid:
     def is_blocked(self, i, j):
         return i < 0 or j < 0 or i >= self.w or j >= self.h or self.blocked[j * self.w + i]
 
-    def circle_free(self, x, y, r):
-        """No blocked cell square meets the disc of radius r about (x, y) (map frame, yaw 0)."""
+    def circle_free(self, x, y, r, spared=None):
+        """No blocked cell square meets the disc of radius r about (x, y) (map frame, yaw 0),
+        except cell squares within spared = (x, y, radius) of that point, if given."""
         gx, gy = (x - self.ox) / self.res, (y - self.oy) / self.res
         rc = r / self.res - 1e-6
         # Fast path (memoised per cell): every cell square within rc of this cell's square is
@@ -107,6 +109,8 @@ class Grid:
         if clear:
             return True
         # Exact test against the nearby blocked squares.
+        if spared is not None:
+            sx, sy, sr = (spared[0] - self.ox) / self.res, (spared[1] - self.oy) / self.res, spared[2] / self.res
         for j in range(int(math.floor(gy - rc)), int(math.floor(gy + rc)) + 1):
             for i in range(int(math.floor(gx - rc)), int(math.floor(gx + rc)) + 1):
                 if not self.is_blocked(i, j):
@@ -114,8 +118,21 @@ class Grid:
                 dx = max(i - gx, 0.0, gx - (i + 1))
                 dy = max(j - gy, 0.0, gy - (j + 1))
                 if dx * dx + dy * dy < rc * rc:
+                    if spared is not None:
+                        ex, ey = max(i - sx, 0.0, sx - (i + 1)), max(j - sy, 0.0, sy - (j + 1))
+                        if ex * ex + ey * ey <= sr * sr:
+                            continue  # under the robot at the start: an escape may cross it
                     return False
         return True
+
+    def random_touching_pose(self, rng):
+        """A pose whose cell is free but whose robot circle touches an obstacle, or None."""
+        for _ in range(4000):
+            i, j = rng.randrange(self.w), rng.randrange(self.h)
+            x, y = self.ox + (i + 0.5) * self.res, self.oy + (j + 0.5) * self.res
+            if not self.is_blocked(i, j) and not self.circle_free(x, y, ROBOT_RADIUS):
+                return x, y, rng.uniform(-math.pi, math.pi)
+        return None
 
     def random_free_pose(self, rng):
         for _ in range(2000):
@@ -233,7 +250,7 @@ class Soak:
         self.rng = random.Random(args.seed)
         self.lock = threading.Lock()
         self.stats = {"requests": 0, "by_interface": {}, "by_kind": {}, "answers": {}, "answers_by_kind": {},
-                      "paths_checked": 0, "solutions_checked": 0, "goals_substituted": 0, "cancels_sent": 0,
+                      "paths_checked": 0, "solutions_checked": 0, "goals_substituted": 0, "starts_escaped": 0, "cancels_sent": 0,
                       "cancel_latency_running_s": [],
                       "map_updates": {"valid": 0, "malformed": {}}, "updates_sent": {}, "failures": [], "rss_kb": [],
                       "checkpoints": []}
@@ -305,8 +322,8 @@ class Soak:
         kind = rng.choices(
             ["valid", "valid_robot_start", "valid_odom_goal", "random_pose", "far_out", "nan_position",
              "nan_quaternion", "zero_quaternion", "unnormalised_quaternion", "unknown_frame", "bad_algorithm",
-             "bad_weight", "bad_budget", "tolerant_goal", "bad_tolerance"],
-            weights=[30, 6, 6, 12, 4, 3, 3, 3, 3, 3, 3, 3, 3, 10, 3])[0]
+             "bad_weight", "bad_budget", "tolerant_goal", "bad_tolerance", "tolerant_start", "bad_start_tolerance"],
+            weights=[30, 6, 6, 12, 4, 3, 3, 3, 3, 3, 3, 3, 3, 10, 3, 10, 2])[0]
         a = grid.random_free_pose(rng) or (0.0, 0.0, 0.0)
         b = grid.random_free_pose(rng) or (0.0, 0.0, 0.0)
         start = pose_stamped("map", a[0], a[1], yaw_quaternion(a[2]))
@@ -315,7 +332,7 @@ class Soak:
         req = {"start": start, "goal": goal, "time_budget": rng.choice([0.0, 0.05, 0.2, 0.5, 1.0, 2.0]),
                "algorithm": rng.choice(["", "", "amha", "mha", "ara", "ana", "wastar", "astar"]),
                "w1": rng.choice([0.0, 0.0, 1.0, 1.5, 3.0, 10.0]), "w2": rng.choice([0.0, 0.0, 1.0, 2.0, 5.0]),
-               "goal_tolerance": 0.0, "ignore_goal_heading": rng.random() < 0.15}
+               "goal_tolerance": 0.0, "ignore_goal_heading": rng.random() < 0.15, "start_tolerance": 0.0}
         expected = None  # any clean status
         if kind == "valid_robot_start":
             start.header.frame_id = ""
@@ -381,14 +398,33 @@ class Soak:
         elif kind == "bad_tolerance":
             req["goal_tolerance"] = rng.choice([-0.5, -1e-9, float("nan"), float("inf"), -float("inf")])
             expected = {S.INVALID_REQUEST}
+        elif kind == "tolerant_start":
+            # A start touching an obstacle (or anywhere in the map), with a start tolerance: a
+            # path may leave it across obstacle cells under the robot there, and no others
+            # (check_path), and its goal tolerance too, sometimes.
+            touching = grid.random_touching_pose(rng) if rng.random() < 0.7 else None
+            x, y, t = touching or (grid.ox + rng.uniform(0, grid.w * grid.res),
+                                   grid.oy + rng.uniform(0, grid.h * grid.res), rng.uniform(-math.pi, math.pi))
+            req["start"] = pose_stamped("map", x, y, yaw_quaternion(t))
+            start_map = (x, y, t)
+            req["start_tolerance"] = rng.choice([0.05, 0.1, 0.3, 0.5, 1.0])
+            if rng.random() < 0.3:
+                req["goal_tolerance"] = rng.choice([0.1, 0.5])
+        elif kind == "bad_start_tolerance":
+            req["start_tolerance"] = rng.choice([-0.5, -1e-9, float("nan"), float("inf"), -float("inf")])
+            expected = {S.INVALID_REQUEST}
         if expected is not None:
             expected = expected | {S.BUSY}
         return kind, req, expected, start_map, goal_map
 
-    def check_path(self, where, path, start_map, goal_map, grids, goal_tolerance=0.0, any_heading=False):
+    def check_path(self, where, path, start_map, goal_map, grids, goal_tolerance=0.0, any_heading=False,
+                   escape_poses=0):
         """Checks one path (nav_msgs/Path); returns the reasons it is wrong ([] = valid). With a
         goal tolerance it may end anywhere within the tolerance of the goal, at any heading; with
-        any_heading, at the goal's position with any heading."""
+        any_heading, at the goal's position with any heading. Its first escape_poses poses may
+        leave a start in collision: they may touch the obstacle cells under the robot at the
+        start (cells within its footprint, a 16-gon about the circle, of the start's cell centre),
+        and no others."""
         poses = path.poses
         if path.header.frame_id != "map":
             return ["path frame '%s'" % path.header.frame_id]
@@ -413,9 +449,11 @@ class Soak:
                 if math.hypot(xs[k][0] - xs[k - 1][0], xs[k][1] - xs[k - 1][1]) > 1.5 * g.res + 1e-6:
                     err.append("jump of %.3f m at pose %d" % (math.hypot(xs[k][0] - xs[k - 1][0], xs[k][1] - xs[k - 1][1]), k))
                     break
+            under = (start_map[0], start_map[1], ROBOT_RADIUS / math.cos(math.pi / 16) + 0.75 * g.res)
             for k, (x, y, _) in enumerate(xs):
-                if not g.circle_free(x, y, ROBOT_RADIUS):
-                    err.append("pose %d (%.2f, %.2f) collides" % (k, x, y))
+                if not g.circle_free(x, y, ROBOT_RADIUS, under if k < escape_poses else None):
+                    err.append("pose %d (%.2f, %.2f) collides%s" % (k, x, y, "" if k < escape_poses else
+                                                                   " (after the start's escape, if any)"))
                     break
             if not err:
                 return []
@@ -457,8 +495,24 @@ class Soak:
                           "%s" % (where, res.message))
             with self.lock:
                 self.stats["goals_substituted"] += 1
+        # A start escape ends at escape_end, the path's first collision-free pose: the poses before
+        # it may touch the obstacles under the start.
+        escape_poses = 0
+        if res.start_escaped:
+            start_tolerance = 0.0 if req is None else req["start_tolerance"]
+            e = res.escape_end.pose.position
+            ends = [k for k, p in enumerate(res.path.poses)
+                    if math.hypot(p.pose.position.x - e.x, p.pose.position.y - e.y) < 1e-6]
+            if start_tolerance <= 0.0 or "leaves it by" not in res.message or res.escape_end.header.frame_id != "map" \
+                    or not ends or math.hypot(e.x - start_map[0], e.y - start_map[1]) > start_tolerance + 0.75 * max(
+                        g.res for g in grids):
+                self.fail("%s: start escaped without a tolerance, a message, or an escape_end on the path within it: "
+                          "%s" % (where, res.message))
+            escape_poses = ends[0] if ends else len(res.path.poses)
+            with self.lock:
+                self.stats["starts_escaped"] += 1
         errs = self.check_path(where, res.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0,
-                               any_heading)
+                               any_heading, escape_poses)
         with self.lock:
             self.stats["paths_checked"] += 1
         if errs:
@@ -485,8 +539,9 @@ class Soak:
             if s.same_path_as_previous != (len(s.path.poses) == 0) and k > 0:
                 self.fail("%s: solution %d: same_path_as_previous does not match its empty path" % (where, k))
             if s.path.poses:
+                # (A solution's own escape may end elsewhere than the best path's: anywhere.)
                 e = self.check_path(where, s.path, start_map, goal_map, grids, tolerance if res.goal_substituted else 0.0,
-                                    any_heading)
+                                    any_heading, len(s.path.poses) if res.start_escaped else 0)
                 if e:
                     self.fail("%s: solution %d invalid: %s" % (where, k, " | ".join(e)))
             prev = s
@@ -505,7 +560,7 @@ class Soak:
         kind, r, expected, sm, gm = self.make_request(rng)
         req = PlanRequest(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
                           w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"],
-                          ignore_goal_heading=r["ignore_goal_heading"])
+                          ignore_goal_heading=r["ignore_goal_heading"], start_tolerance=r["start_tolerance"])
         t_sent = time.time()
         res = proxies["plan"](req)
         self.check_answer("plan", kind, expected, res, sm, gm, t_sent, time.time(), False, r)
@@ -513,8 +568,8 @@ class Soak:
 
     def call_make_plan(self, rng, proxies):
         kind, r, expected, sm, gm = self.make_request(rng)
-        if kind in ("bad_algorithm", "bad_weight", "bad_budget"):
-            expected = None  # GetPlan has no algorithm, weights or budget: a valid request
+        if kind in ("bad_algorithm", "bad_weight", "bad_budget", "bad_start_tolerance"):
+            expected = None  # GetPlan has no algorithm, weights, budget or start tolerance: a valid request
         t_sent = time.time()
         # GetPlan's tolerance is a float32: the request's, rounded the way the server reads it.
         tolerance = struct.unpack("f", struct.pack("f", r["goal_tolerance"]))[0]
@@ -537,7 +592,7 @@ class Soak:
         kind, r, expected, sm, gm = self.make_request(rng)
         goal = PlanAnytimeGoal(start=r["start"], goal=r["goal"], time_budget=r["time_budget"], algorithm=r["algorithm"],
                                w1=r["w1"], w2=r["w2"], goal_tolerance=r["goal_tolerance"],
-                               ignore_goal_heading=r["ignore_goal_heading"])
+                               ignore_goal_heading=r["ignore_goal_heading"], start_tolerance=r["start_tolerance"])
         feedback = []
         t_sent = time.time()
         client.send_goal(goal, feedback_cb=lambda f: feedback.append(time.time()))

@@ -47,9 +47,12 @@ def main():
           ", ".join("%s %d" % (k, v) for k, v in sorted(d["by_interface"].items())),
           d["failure_count"], "alive" if d["node_alive_at_end"] else "DEAD",
           d["paths_checked"], d["solutions_checked"],
-          "" if "goals_substituted" not in d else
-          " (%d of them to a substitute for a goal in collision, within the request's goal tolerance)"
-          % d["goals_substituted"]))
+          ("" if "goals_substituted" not in d else
+           " (%d of them to a substitute for a goal in collision, within the request's goal tolerance)"
+           % d["goals_substituted"]) +
+          ("" if "starts_escaped" not in d else
+           " (%d of them leaving a start in collision, within the request's start tolerance, across "
+           "no obstacle but those under the robot at the start)" % d["starts_escaped"])))
     if d["failures"]:
         w("Failures:\n")
         for f in d["failures"][:50]:

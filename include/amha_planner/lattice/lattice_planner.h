@@ -185,6 +185,25 @@ struct GoalOptions {
   bool any_heading = false;
 };
 
+/// What may happen when the start is in collision (added after the API freeze; the default
+/// refuses such a start with kStartInCollision, as plan() without options).
+struct StartOptions {
+  /// Metres; 0: no escape. A start whose footprint collides (its centre on an inscribed, lethal
+  /// or unknown cell, or an obstacle under its footprint, as from a pose drifting into the
+  /// inflation or a person standing within the footprint) may leave the collision by motions
+  /// that cross inscribed cells and the obstacle cells the robot already stands on, never other
+  /// lethal or unknown cells, with every state on the way within this distance of the start,
+  /// until the footprint is free (the rule: StartEscape in start_escape.h). The search starts
+  /// from every collision-free state so reached, at its escape cost: the bounds are relative to
+  /// the optimum of that relaxed problem. A collision-free start is planned from as it is,
+  /// whatever the tolerance. Forward searches only (backward_search refuses a start in
+  /// collision, saying so).
+  double tolerance = 0.0;
+  /// >= 1: an escape motion costs this times what it costs across the costliest free cells
+  /// (cost 252), so that paths leave a collision by the shortest way out.
+  double penalty = 2.0;
+};
+
 /// Why a query was refused before searching.
 enum class QueryError {
   kNone,
@@ -209,6 +228,11 @@ struct LatticeSolution {
   /// search.elapsed_s plus the time this plan() call spent before the search: computing
   /// heuristic grids and, with a goal tolerance, choosing the goal (added after the API freeze).
   double elapsed_total_s = 0.0;
+  /// With a start escape (PlanResult::start_escaped): poses[0 .. escape_poses) leave the
+  /// start's collision, and poses[escape_poses - 1] is the path's first collision-free pose;
+  /// escape_cost (units, in search.cost) is what those motions cost. 0 without an escape.
+  std::size_t escape_poses = 0;
+  Cost escape_cost = 0;
 };
 
 /// Where a query's heuristic grids came from.
@@ -242,6 +266,16 @@ struct PlanResult {
   /// Seconds spent choosing that substitute; like heuristic_seconds, they count against
   /// limits.time_limit_s.
   double goal_seconds = 0.0;
+  /// True when the start was in collision and StartOptions let the paths leave it: each
+  /// solution's path begins with its escape (LatticeSolution::escape_poses), message says how the
+  /// last one left, and the bounds are relative to the optimal cost of the relaxed problem (the
+  /// escape motions from the start allowed). Set once the escape is found (added after the API
+  /// freeze).
+  bool start_escaped = false;
+  /// How the last solution left the start's collision (empty without an escape).
+  std::string escape_message;
+  /// Seconds spent finding the escapes (they count against limits.time_limit_s too).
+  double escape_seconds = 0.0;
 };
 
 /// A lattice planner for one map and one robot. Construction does the per-map work (loads or
@@ -291,6 +325,12 @@ class LatticePlanner {
   bool prepareKinematicTables(const SearchLimits& limits = SearchLimits());
   /// Bytes of the kinematic tables built so far (shared; 0 without tables).
   std::size_t kinematicTableBytes() const;
+  /// The same with StartOptions (an escape from a start in collision): see there. The start
+  /// tolerance must be finite and >= 0 and the penalty finite and >= 1, else
+  /// std::invalid_argument.
+  PlanResult plan(const Pose2D& start, const Pose2D& goal, const StartOptions& start_options,
+                  const GoalOptions& goal_options, const PlannerConfig& algorithm, const SearchLimits& limits,
+                  const std::function<void(const LatticeSolution&)>& on_solution = {});
 
   /// The footprint polygon placed at a pose (map frame), for drawing and markers.
   std::vector<std::array<double, 2>> footprintAt(const Pose2D& pose) const;

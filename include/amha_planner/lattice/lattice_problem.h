@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "amha_planner/lattice/heuristic_grids.h"
@@ -44,6 +45,15 @@ class LatticeProblem final : public SearchProblem {
   std::size_t numHeuristics() const override { return 1 + static_cast<std::size_t>(num_inadmissible_); }
   void heuristics(StateId s, HeuristicValue* h, std::size_t count) override;
   std::size_t memoryBytes() const override;
+
+  /// Starts instead at a virtual state joined to each of `exits` (collision-free states, each
+  /// with what reaching it costs: the escapes of a start in collision, StartEscape) by an edge
+  /// of that cost (>= 1). Forward searches only (std::logic_error otherwise), before searching.
+  /// state() of the virtual start is the exit with the least cost + anchor, whose heuristics it
+  /// takes: that keeps the anchor admissible and consistent (h(v) <= cost(v, e) + h(e) for every
+  /// exit e). A path's virtual start is its first state; it is no lattice state.
+  void startAtExits(const std::vector<std::pair<LatticeState, Cost>>& exits);
+  StateId virtualStart() const { return virtual_start_; }
 
   /// The virtual goal state of an any_goal_heading problem, else kNoState. A path's virtual
   /// state (its last, or first searching backward) is no lattice state: state() of it gives the
@@ -87,6 +97,8 @@ class LatticeProblem final : public SearchProblem {
   StateId start_ = kNoState, goal_ = kNoState, virtual_goal_ = kNoState;
   int goal_x_ = 0, goal_y_ = 0;
   std::vector<Edge> into_goal_cell_;  // backward, any heading: the virtual start's edges
+  StateId virtual_start_ = kNoState;  // startAtExits()
+  std::vector<Edge> start_exits_;     //   and its edges
   std::vector<double> turn_euclid_, turn_grid_;  // turning terms per heading (cost units)
   static constexpr int kTile = 8;
   static constexpr std::size_t kPagesPerSlab = 64;

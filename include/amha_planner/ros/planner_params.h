@@ -2,8 +2,10 @@
 // and how a request's optional overrides combine with them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <ros/node_handle.h>
 
@@ -29,6 +31,10 @@ struct PlannerParams {
   /// ~make_plan's, whose GetPlan cannot say it).
   bool ignore_goal_heading = false;
   double max_memory_mb = 2048.0;      ///< search + lattice state memory cap per request
+  /// A start in collision may be left within this many metres (a request's start_tolerance
+  /// of 0 takes it; 0: refused), each escape motion at this penalty (StartOptions).
+  double start_tolerance = 0.0;
+  double start_escape_penalty = 2.0;
 
   std::string global_frame = "map";
   std::string robot_base_frame = "base_link";
@@ -47,6 +53,10 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh);
 /// Returns false with a message for an unknown name or weights that are not finite and >= 1.
 bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_name, double w1,
                      double w2, amha::PlannerConfig* out, std::string* error);
+
+/// A footprint in costmap_2d's string form "[[x, y], ...]" ("" or "[]": none, a round robot).
+/// Throws std::invalid_argument naming the parameter (pnh's ~footprint) and the problem.
+std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh, const std::string& text);
 
 /// Strips a leading '/' (tf2 frame ids have none).
 std::string normaliseFrame(const std::string& frame);

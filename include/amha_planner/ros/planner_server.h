@@ -11,7 +11,10 @@
 //    for its job's result;
 //  - the action server's goal and cancel callbacks have their own queue and thread, so a cancel
 //    reaches a running search at once;
-//  - one worker thread (PlanQueue) runs the searches, one at a time.
+//  - one worker thread (PlanQueue) runs the searches, one at a time;
+//  - dynamic_reconfigure's ~set_parameters is served on the node's own queue: a change replaces
+//    the parameters whole (requests take a snapshot when they start planning) and, for the robot,
+//    motion model or map conversion, has the builder rebuild the planner from the current map.
 #pragma once
 
 #include <atomic>
@@ -25,6 +28,8 @@
 #include <string>
 
 #include <actionlib/server/action_server.h>
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/GetPlan.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -34,6 +39,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "amha_planner/AmhaPlannerConfig.h"
 #include "amha_planner/Plan.h"
 #include "amha_planner/PlanAnytimeAction.h"
 #include "amha_planner/lattice/lattice_planner.h"
@@ -66,6 +72,7 @@ class PlannerServer {
     double w1 = 0.0, w2 = 0.0;
     double goal_tolerance = 0.0;  ///< metres (nav_msgs/GetPlan's tolerance)
     bool ignore_goal_heading = false;
+    double start_tolerance = 0.0;  ///< metres; 0: ~start_tolerance
   };
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
@@ -81,6 +88,8 @@ class PlannerServer {
     std::uint32_t width = 0, height = 0;
     double resolution = 0.0;
     std::string error;  ///< why the map was refused
+    std::shared_ptr<const PlannerParams> params;  ///< the parameters to build with
+    bool reconfigured = false;  ///< built in full because the parameters changed
   };
   /// On the builder thread: builds the planner of the current map (with every update received
   /// so far) and makes it current; a map the lattice refuses is logged and the planner kept.
@@ -102,11 +111,16 @@ class PlannerServer {
 
   /// Queues `request` and waits for its response (BUSY when the queue is full).
   Plan::Response runBlocking(const Request& request);
+  /// A dynamic_reconfigure change: checked, then in force for the requests that start planning
+  /// after it, rebuilding the planner if it must; refused (config reset, error logged) if bad.
+  void onReconfigure(AmhaPlannerConfig& config, std::uint32_t level);
+  /// The parameters in force (a snapshot: a reconfiguration replaces them whole).
+  std::shared_ptr<const PlannerParams> params() const;
   /// Plans one request on the worker thread; `cancel` stops it.
   Plan::Response execute(const Request& request, std::uint32_t id,
                          const std::atomic<bool>& cancel, const SolutionSink& sink);
   /// Resolves a request pose into the global frame (tf2); false with status and message set.
-  bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
+  bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
                      geometry_msgs::PoseStamped* out, Plan::Response* res);
 
   std::shared_ptr<amha::lattice::LatticePlanner> currentPlanner() const;
@@ -114,12 +128,16 @@ class PlannerServer {
   void releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& flag);
 
   ros::NodeHandle nh_, pnh_;
-  PlannerParams params_;
+  /// The parameters read at start-up. Those dynamic_reconfigure cannot change (frames, queue
+  /// length, map size cap) are read from here, without a lock.
+  const PlannerParams startup_;
+  mutable std::mutex params_mutex_;  ///< guards params_ (taken inside map_mutex_ when both are)
+  std::shared_ptr<const PlannerParams> params_;
 
   ros::CallbackQueue map_queue_, service_queue_, action_queue_;
   std::unique_ptr<ros::AsyncSpinner> map_spinner_, service_spinner_, action_spinner_;
   ros::Subscriber map_sub_, map_updates_sub_;
-  std::mutex map_mutex_;  ///< guards the seven below
+  std::mutex map_mutex_;  ///< guards the eight below
   nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map, with its accepted updates
   /// The grid of the full map accepted since the last build started (as it came, without the
   /// updates after it), converted once when it was checked; null if none.
@@ -128,6 +146,9 @@ class PlannerServer {
   std::uint64_t unbuilt_updates_ = 0; ///< updates accepted since the last build started
   amha::lattice::CellRect unbuilt_rect_;  ///< the cells they changed
   bool build_failed_ = false;         ///< the last build failed: the next one starts afresh
+  /// The robot, motion model or map conversion changed: the next build converts last_map_
+  /// again and builds in full.
+  bool reconfigured_ = false;
   ros::ServiceServer plan_srv_, make_plan_srv_;
   ros::Publisher solutions_pub_, path_pub_, markers_pub_;
   std::unique_ptr<ActionServer> action_server_;
@@ -148,6 +169,9 @@ class PlannerServer {
 
   std::mutex goals_mutex_;  ///< also orders setAccepted before the job's first step
   std::map<std::string, std::shared_ptr<std::atomic<bool>>> goal_cancel_flags_;
+
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<AmhaPlannerConfig>> reconfigure_;
 
   std::unique_ptr<PlanQueue> queue_;  ///< last member: destroyed (joined) first
 };
