@@ -151,6 +151,11 @@ int benchLatticeMain(int argc, char** argv) {
   app.add_option("--time-limit", time_limit, "seconds per run, heuristics included (default 5)");
   QueueSchedule schedule = QueueSchedule::kRoundRobin;
   cli::addScheduleOption(app, &schedule);
+  std::string preset = "paper";
+  app.add_option("--preset", preset,
+                 "weights: paper (each algorithm's paper preset, the paper's figures; default) or lattice (the "
+                 "lattice planner's defaults, as amha plan and the server use them)")
+      ->check(CLI::IsMember({"paper", "lattice"}));
   app.add_option("--out-dir", out_dir, "directory for the outputs (default docs/results)");
   app.add_option("--name", name, "file name prefix (default lattice)");
   app.add_option("--json", json_path, "also write every run (runs/solutions schema) to this file");
@@ -214,7 +219,7 @@ int benchLatticeMain(int argc, char** argv) {
   limits.time_limit_s = time_limit;
   for (std::size_t q = 0; q < queries.size(); ++q) {
     for (std::size_t a = 0; a < algorithms.size(); ++a) {
-      PlannerConfig pc = defaultConfig(algorithms[a]);
+      PlannerConfig pc = preset == "lattice" ? lattice::defaultPlannerConfig(algorithms[a]) : defaultConfig(algorithms[a]);
       pc.schedule = schedule;
       Run r{q, algorithms[a], planners[a]->plan(queries[q].start, queries[q].goal, pc, limits)};
       if (r.result.error != lattice::QueryError::kNone) {

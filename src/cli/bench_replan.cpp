@@ -55,7 +55,7 @@ Replan planOnce(LatticePlanner& planner, const lattice::Pose2D& start, const lat
     }
     cancel = true;
   };
-  const lattice::PlanResult result = planner.plan(start, goal, defaultConfig(algorithm), limits, on_solution);
+  const lattice::PlanResult result = planner.plan(start, goal, lattice::defaultPlannerConfig(algorithm), limits, on_solution);
   if (result.error != lattice::QueryError::kNone) throw std::invalid_argument(result.message);
   r.heuristic_s = result.heuristic_seconds;
   r.source = result.heuristic_source;

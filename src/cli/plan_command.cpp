@@ -74,7 +74,7 @@ int planMain(int argc, char** argv) {
     std::cerr << "amha plan: unknown algorithm '" << algorithm_name << "' (amha, mha, ara, ana, wastar, astar)\n";
     return kExitUsage;
   }
-  PlannerConfig pc = defaultConfig(algorithm);
+  PlannerConfig pc = lattice::defaultPlannerConfig(algorithm);
   if (!std::isnan(eps) && !std::isnan(w1)) {
     std::cerr << "amha plan: give --eps or --w1, not both\n";
     return kExitUsage;

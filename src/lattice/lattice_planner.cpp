@@ -524,6 +524,19 @@ std::vector<std::array<double, 2>> LatticePlanner::footprintAt(const Pose2D& pos
   return impl_->graph->footprint().at(pose);
 }
 
+PlannerConfig defaultPlannerConfig(Algorithm algorithm) {
+  PlannerConfig c = defaultConfig(algorithm);
+  if (algorithm == Algorithm::kAmhaStar) {
+    c.w1 = 1.1;
+    c.w2 = 5.0;
+    c.weight_schedule = WeightSchedule::kCertified;
+    c.certified_ratio = 0.0;
+    c.certified_split = 0.0;
+    c.publish_within_iterations = true;
+  }
+  return c;
+}
+
 const char* heuristicSourceName(HeuristicSource s) {
   switch (s) {
     case HeuristicSource::kCached: return "cached";

@@ -160,6 +160,15 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
   l.coarse_anchor = getBool(pnh, "coarse_anchor", l.coarse_anchor);
   l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, 1024);
+  l.kinematic_radius = getDouble(pnh, "kinematic_radius", l.kinematic_radius, 0.0, 100.0);
+  l.anchor_connectivity = getInt(pnh, "anchor_connectivity", l.anchor_connectivity, 8, 16);
+  if (l.anchor_connectivity != 8 && l.anchor_connectivity != 16) bad(pnh, "anchor_connectivity", "must be 8 or 16");
+  const std::string inadmissible = getString(pnh, "inadmissible_heuristics", "kinematic");
+  if (inadmissible != "kinematic" && inadmissible != "paper") {
+    bad(pnh, "inadmissible_heuristics", "must be kinematic or paper, not '" + inadmissible + "'");
+  }
+  l.inadmissible = inadmissible == "paper" ? amha::lattice::LatticeConfig::Inadmissible::kPaper
+                                           : amha::lattice::LatticeConfig::Inadmissible::kKinematic;
   l.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.anchor_turn_term);
   l.backward_search = getBool(pnh, "backward_search", l.backward_search);
   l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
@@ -185,6 +194,14 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
     bad(pnh, "queue_schedule", "unknown schedule '" + schedule + "' (rr, dts)");
   }
   p.eps_decrement = getDouble(pnh, "eps_decrement", -1, 0.0, 1e6);
+  const std::string weights = getString(pnh, "weight_schedule", amha::weightScheduleName(p.weight_schedule));
+  if (!amha::parseWeightSchedule(weights, &p.weight_schedule)) {
+    bad(pnh, "weight_schedule", "unknown schedule '" + weights + "' (certified, decrement)");
+  }
+  p.certified_ratio = getDouble(pnh, "certified_ratio", p.certified_ratio, 0.0, 0.999);
+  p.certified_split = getDouble(pnh, "certified_split", p.certified_split, 0.0, 1.0);
+  p.final_gap = getDouble(pnh, "final_gap", p.final_gap, 0.0, 1e3);
+  p.publish_within_iterations = getBool(pnh, "publish_within_iterations", p.publish_within_iterations);
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
@@ -220,7 +237,14 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
     *error = "w2 must be finite and >= 1 (0 keeps the configured value)";
     return false;
   }
-  amha::PlannerConfig c = amha::defaultConfig(algorithm);
+  amha::PlannerConfig c = amha::lattice::defaultPlannerConfig(algorithm);
+  if (algorithm == amha::Algorithm::kAmhaStar) {
+    c.weight_schedule = params.weight_schedule;
+    c.certified_ratio = params.certified_ratio;
+    c.certified_split = params.certified_split;
+    c.final_gap = params.final_gap;
+    c.publish_within_iterations = params.publish_within_iterations;
+  }
   switch (algorithm) {
     case amha::Algorithm::kAmhaStar:
     case amha::Algorithm::kMhaStar:
@@ -246,6 +270,12 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
       break;  // no weights
   }
   // The lattice offers num_inadmissible heuristics; the search may use them all.
+  try {
+    amha::makePlanner(c);  // the weights and schedule as a whole
+  } catch (const std::invalid_argument& e) {
+    *error = e.what();
+    return false;
+  }
   *out = c;
   return true;
 }

@@ -50,6 +50,14 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   c.dw1 = p.dw1;
   c.dw2 = p.dw2;
   c.queue_schedule = amha::scheduleName(p.queue_schedule);
+  c.weight_schedule = amha::weightScheduleName(p.weight_schedule);
+  c.certified_ratio = p.certified_ratio;
+  c.certified_split = p.certified_split;
+  c.final_gap = p.final_gap;
+  c.publish_within_iterations = p.publish_within_iterations;
+  c.kinematic_radius = l.kinematic_radius;
+  c.anchor_connectivity = l.anchor_connectivity;
+  c.inadmissible_heuristics = l.inadmissible == lat::LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
   c.eps = p.eps;
   c.eps_decrement = p.eps_decrement;
   c.default_time_budget = p.default_time_budget;
@@ -93,6 +101,8 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
       {"default_time_budget", c.default_time_budget}, {"max_memory_mb", c.max_memory_mb},
       {"start_tolerance", c.start_tolerance}, {"start_escape_penalty", c.start_escape_penalty},
       {"tf_timeout", c.tf_timeout}, {"robot_radius", c.robot_radius}, {"turning_radius", c.turning_radius},
+      {"certified_ratio", c.certified_ratio}, {"certified_split", c.certified_split}, {"final_gap", c.final_gap},
+      {"kinematic_radius", c.kinematic_radius},
       {"nominal_speed", c.nominal_speed}, {"time_to_turn_45", c.time_to_turn_45},
       {"cost_penalty", c.cost_penalty}, {"marker_spacing", c.marker_spacing}};
   for (const auto& [name, v] : numbers) {
@@ -113,6 +123,15 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   if (!amha::parseSchedule(c.queue_schedule, &p.queue_schedule)) {
     return fail("queue_schedule", "unknown schedule '" + c.queue_schedule + "' (rr, dts)");
   }
+  if (!amha::parseWeightSchedule(c.weight_schedule, &p.weight_schedule)) {
+    return fail("weight_schedule", "unknown schedule '" + c.weight_schedule + "' (certified, decrement)");
+  }
+  if (c.anchor_connectivity != 8 && c.anchor_connectivity != 16) {
+    return fail("anchor_connectivity", std::to_string(c.anchor_connectivity) + " is not 8 or 16");
+  }
+  if (c.inadmissible_heuristics != "kinematic" && c.inadmissible_heuristics != "paper") {
+    return fail("inadmissible_heuristics", "'" + c.inadmissible_heuristics + "' is not kinematic or paper");
+  }
   if (c.num_headings % 8 != 0) return fail("num_headings", std::to_string(c.num_headings) + " is not a multiple of 8");
   lat::LatticeConfig& l = p.lattice;
   try {
@@ -127,6 +146,14 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   p.dw2 = c.dw2;
   p.eps = c.eps;
   p.eps_decrement = c.eps_decrement;
+  p.certified_ratio = c.certified_ratio;
+  p.certified_split = c.certified_split;
+  p.final_gap = c.final_gap;
+  p.publish_within_iterations = c.publish_within_iterations;
+  l.kinematic_radius = c.kinematic_radius;
+  l.anchor_connectivity = c.anchor_connectivity;
+  l.inadmissible = c.inadmissible_heuristics == "paper" ? lat::LatticeConfig::Inadmissible::kPaper
+                                                        : lat::LatticeConfig::Inadmissible::kKinematic;
   p.default_time_budget = c.default_time_budget;
   p.max_memory_mb = c.max_memory_mb;
   p.ignore_goal_heading = c.ignore_goal_heading;

@@ -340,6 +340,15 @@ class LatticePlanner {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The search configuration the lattice planner uses by default (CLI, server, benchmarks):
+/// amha::defaultConfig(algorithm), except for A-MHA*, whose paper preset (w1 = w2 = 5, steps of
+/// 0.5) gives a first path 10-15 % above the optimum and then nothing until the proof. Here it
+/// starts at w1 = 1.1, w2 = 5 (with the kinematic inadmissible heuristics the first path is then
+/// within about 1 % of the optimum), goes straight on to the proof (certified schedule, ratio
+/// 0: intermediate iterations cost more than they find, docs/lattice.md), and publishes every
+/// cheaper path and every halving of the certified bound's gap as the proof goes on.
+PlannerConfig defaultPlannerConfig(Algorithm algorithm);
+
 const char* queryErrorName(QueryError e);
 const char* heuristicSourceName(HeuristicSource s);
 

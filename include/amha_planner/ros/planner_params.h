@@ -25,6 +25,13 @@ struct PlannerParams {
   double w1 = -1, w2 = -1, dw1 = -1, dw2 = -1, eps = -1, eps_decrement = -1;
   /// A-MHA*/MHA*: which inadmissible queue goes next (round robin, as in the paper, or DTS).
   amha::QueueSchedule queue_schedule = amha::QueueSchedule::kRoundRobin;
+  /// A-MHA*: how the weights fall between iterations and whether improvements are published
+  /// within them (PlannerConfig's fields; the defaults are lattice::defaultPlannerConfig's).
+  amha::WeightSchedule weight_schedule = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).weight_schedule;
+  double certified_ratio = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_ratio;
+  double certified_split = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_split;
+  double final_gap = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).final_gap;
+  bool publish_within_iterations = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).publish_within_iterations;
 
   double default_time_budget = 5.0;   ///< seconds, when a request gives 0
   /// Every request's goal heading is free (as if each set ignore_goal_heading; also
