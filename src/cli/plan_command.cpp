@@ -58,6 +58,10 @@ int planMain(int argc, char** argv) {
   app.add_option("--certified-ratio", certified_ratio, "certified schedule: next bound = 1 + ratio x (c - 1)");
   app.add_option("--certified-split", certified_split, "certified schedule: w1 = bound^split, w2 = bound / w1");
   app.add_option("--final-gap", final_gap, "certified schedule: prove optimality once c <= 1 + gap");
+  double stall_expansions = NAN, stall_w1 = NAN;
+  app.add_option("--stall-expansions", stall_expansions,
+                 "amha/ara: after this many expansions without a path, go on with w1 = --stall-w1 (0: never)");
+  app.add_option("--stall-w1", stall_w1, "amha/ara: the w1 a stalled first iteration goes on with");
   bool publish_within = false;
   app.add_flag("--publish-within", publish_within, "publish cheaper paths as soon as an iteration finds them");
   app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
@@ -93,6 +97,14 @@ int planMain(int argc, char** argv) {
   if (!std::isnan(certified_split)) pc.certified_split = certified_split;
   if (!std::isnan(final_gap)) pc.final_gap = final_gap;
   if (publish_within) pc.publish_within_iterations = true;
+  if (!std::isnan(stall_expansions)) {
+    if (!(stall_expansions >= 0.0 && stall_expansions <= 1e15)) {
+      std::cerr << "amha plan: --stall-expansions must be a number of expansions >= 0\n";
+      return kExitUsage;
+    }
+    pc.stall_expansions = static_cast<std::uint64_t>(stall_expansions);
+  }
+  if (!std::isnan(stall_w1)) pc.stall_w1 = stall_w1;
   try {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {

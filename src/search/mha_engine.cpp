@@ -218,6 +218,15 @@ bool MhaEngine::improvePath() {
       }
     }
     if (limitHit()) return false;
+    // No path yet after the stall budget: on to an iteration with a larger w1 (stall_w1), from
+    // OPEN_0 u INCONS as line 38 would, once.
+    if (iteration_ == 0 && opt_.anytime && opt_.stall_expansions > 0 && expansions_ >= opt_.stall_expansions &&
+        goal_g >= kInfiniteCost && opt_.stall_w1 > w1_) {
+      collectOpen0AndIncons();
+      ++iteration_;
+      if (!prepareNextIteration(opt_.stall_w1, w2_)) return false;
+      continue;
+    }
     std::size_t q = 0;
     if (n_inad > 0) {
       const std::size_t i = next_queue_;

@@ -22,6 +22,8 @@ struct MhaEngineOptions {
   WeightSchedule weight_schedule = WeightSchedule::kDecrement;
   double certified_ratio = 0.5, certified_split = 1.0, final_gap = 0.002;
   bool publish_improvements = false;  // PlannerConfig::publish_within_iterations
+  std::uint64_t stall_expansions = 0;  // PlannerConfig::stall_expansions, stall_w1
+  double stall_w1 = 5.0;
   bool anytime = true;          // false: one ImprovePath (MHA*, weighted A*, A*)
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;

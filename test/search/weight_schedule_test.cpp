@@ -109,6 +109,37 @@ TEST(WeightSchedule, PublishingWithinIterationsFillsTheMiddleHonestly) {
   EXPECT_GT(middles, runs / 4) << "publishing within iterations should fill the middle of many runs";
 }
 
+// A first iteration that stalls gives way to a larger w1: the path it finds carries that
+// iteration's bound, and the stream still ends proven optimal with every bound honest.
+TEST(WeightSchedule, AStalledFirstIterationGoesOnWithALargerW1) {
+  int escalated = 0;
+  for (ExplicitGraph& g : graphs()) {
+    const Cost optimal = testing::distancesToGoal(g)[g.s_start];
+    if (optimal >= kInfiniteCost) continue;
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
+      PlannerConfig c = defaultConfig(a);
+      c.w1 = 1.0;
+      c.w2 = a == Algorithm::kAmhaStar ? 2.0 : 1.0;
+      c.weight_schedule = WeightSchedule::kCertified;
+      c.certified_ratio = 0.0;
+      c.stall_expansions = 3;
+      c.stall_w1 = 4.0;
+      c.check_invariants = true;
+      const SearchResult r = makePlanner(c)->search(g, SearchLimits());
+      ASSERT_TRUE(r.hasSolution());
+      EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
+      EXPECT_EQ(r.best().cost, optimal);
+      for (const Solution& s : r.solutions) EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
+      if (r.solutions.front().w1 == 4.0) {
+        ++escalated;
+        EXPECT_GE(r.solutions.front().expansions, 3u);
+        EXPECT_EQ(r.solutions.front().nominal_bound, 4.0 * c.w2);
+      }
+    }
+  }
+  EXPECT_GT(escalated, 5);
+}
+
 TEST(WeightSchedule, DecrementsReportNoIterationThatStopsAtOnce) {
   for (ExplicitGraph& g : graphs()) {
     for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {

@@ -91,6 +91,12 @@ struct PlannerConfig {
   /// (infinite before the first) and cost / the best lower bound proven so far. Off: the
   /// paper's Algorithm 1 exactly, one solution per ImprovePath.
   bool publish_within_iterations = false;
+  /// A-MHA*, ARA*: if the first iteration has expanded this many states without reaching the
+  /// goal (0: never), it gives way to an iteration with w1 = stall_w1 (if larger), which finds a
+  /// first path sooner on the queries where a small w1 crawls; the schedule then goes on from
+  /// there (the weights may rise once: each iteration's bound is proven for its own weights).
+  std::uint64_t stall_expansions = 0;
+  double stall_w1 = 5.0;
   /// Use at most this many inadmissible heuristics of the problem (all by default).
   std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
   /// Order in which the inadmissible queues are tried (A-MHA*, MHA*).
