@@ -20,6 +20,8 @@ add_library(amha_lattice
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
   src/lattice/goal_tolerance.cpp
+  src/lattice/dubins_path.cpp
+  src/lattice/path_smoother.cpp
 )
 target_include_directories(amha_lattice PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
@@ -39,6 +41,9 @@ target_sources(amha PRIVATE
   src/cli/bench_command.cpp
   src/cli/bench_lattice.cpp
   src/cli/bench_replan.cpp
+  src/cli/bench_queries.cpp
+  src/cli/bench_smooth.cpp
+  src/cli/path_metrics.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
 # The benchmarks stamp their reports with this tree's commit.
@@ -81,6 +86,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/heuristic_repair_test.cpp
     test/lattice/goal_tolerance_test.cpp
     test/lattice/any_goal_heading_test.cpp
+    test/lattice/path_smoother_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
 

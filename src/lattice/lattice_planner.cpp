@@ -377,6 +377,8 @@ std::vector<std::array<double, 2>> LatticePlanner::footprintAt(const Pose2D& pos
   return impl_->graph->footprint().at(pose);
 }
 
+const LatticeGraph& LatticePlanner::graph() const { return *impl_->graph; }
+
 const char* heuristicSourceName(HeuristicSource s) {
   switch (s) {
     case HeuristicSource::kCached: return "cached";
