@@ -523,5 +523,37 @@ LatticeSolution smoothedSolution(const LatticeSolution& raw, const SmoothedPath&
   return s;
 }
 
+const SmoothedStream::Step& SmoothedStream::add(const LatticeSolution& raw) {
+  // A-MHA* and ARA* report a path again when only its bound tightens: smoothed once.
+  if (!started_ || raw.search.path != last_ids_) {
+    step_.smoothed = smoother_.smooth(raw.poses);
+    last_ids_ = raw.search.path;
+  }
+  LatticeSolution own = smoothedSolution(raw, step_.smoothed);
+  const bool earlier_cheaper = started_ && step_.published.search.cost < own.search.cost;
+  if (earlier_cheaper) {
+    // The earlier path with this solution's bounds (both hold for it, see above).
+    LatticeSolution kept = raw;
+    kept.poses = step_.published.poses;
+    kept.search.cost = step_.published.search.cost;
+    const double scaled = raw.search.certified_bound * static_cast<double>(kept.search.cost) /
+                          static_cast<double>(std::max<Cost>(raw.search.cost, 1));
+    kept.search.certified_bound = std::min(step_.published.search.certified_bound,
+                                           std::min(std::max(scaled, 1.0), raw.search.nominal_bound));
+    step_.published = std::move(kept);
+    step_.same_as_previous = true;
+  } else {
+    step_.same_as_previous = started_ && own.poses.size() == step_.published.poses.size() &&
+                             std::equal(own.poses.begin(), own.poses.end(), step_.published.poses.begin(),
+                                        [](const Pose2D& a, const Pose2D& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; });
+    // Costs do not rise, so the previous certified bound holds for this path too.
+    if (started_) own.search.certified_bound = std::min(own.search.certified_bound, step_.published.search.certified_bound);
+    step_.published = std::move(own);
+  }
+  step_.republished = earlier_cheaper;
+  started_ = true;
+  return step_;
+}
+
 }  // namespace lattice
 }  // namespace amha

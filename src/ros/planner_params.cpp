@@ -182,6 +182,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
+  p.smooth_path = getBool(pnh, "smooth_path", p.smooth_path);
   // Frames and server.
   p.global_frame = normaliseFrame(getString(pnh, "global_frame", p.global_frame));
   p.robot_base_frame = normaliseFrame(getString(pnh, "robot_base_frame", p.robot_base_frame));

@@ -3,6 +3,7 @@
 // motion models pass the independent validator, keep start and goal, never cost more, bend no
 // tighter than the turning radius and keep headings continuous while driving.
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -204,6 +205,149 @@ TEST(PathSmootherTest, RandomMapsRobotsAndAlgorithmsKeepEveryGuarantee) {
   EXPECT_GT(paths, 60);
   EXPECT_GT(shortened, paths / 2) << "smoothing should usually shorten a lattice path";
   EXPECT_GT(shortcuts, paths);
+}
+
+TEST(PathSmootherTest, StreamPublishesNoCostlierPathAndValidBounds) {
+  // Anytime runs: the published cost and certified bound never rise, the bounds hold for the
+  // published path (cost <= lattice cost of the same solution), a republished path is the
+  // previous one, and a repeated lattice path is not smoothed again.
+  int steps = 0, republished = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    auto map = test::randomMap(80, 70, 0.05, 300 + seed, 14, seed % 2 ? 120 : 0);
+    LatticeConfig c;
+    c.turning_radius = 0.3;
+    c.robot_radius = 0.1;
+    LatticePlanner planner(map, c);
+    const LatticeGraph& g = planner.graph();
+    const PathSmoother smoother(g);
+    std::mt19937 rng(seed);
+    for (int q = 0; q < 30; ++q) {
+      const int sx = static_cast<int>(rng() % g.width()), sy = static_cast<int>(rng() % g.height());
+      const int gx = static_cast<int>(rng() % g.width()), gy = static_cast<int>(rng() % g.height());
+      if (!g.stateValid(sx, sy, 0) || !g.stateValid(gx, gy, 4) || std::hypot(gx - sx, gy - sy) < 30) continue;
+      SearchLimits limits;
+      limits.time_limit_s = 2.0;
+      const Algorithm alg = seed % 3 == 0 ? Algorithm::kAraStar : Algorithm::kAmhaStar;
+      const PlanResult r = planner.plan(g.stateToPose(sx, sy, 0), g.stateToPose(gx, gy, 4), defaultConfig(alg), limits);
+      SmoothedStream stream(smoother);
+      const LatticeSolution* previous = nullptr;
+      LatticeSolution last;
+      for (const LatticeSolution& sol : r.solutions) {
+        const SmoothedStream::Step& step = stream.add(sol);
+        const LatticeSolution& p = step.published;
+        ++steps;
+        EXPECT_LE(p.search.cost, sol.search.cost);
+        EXPECT_EQ(p.search.nominal_bound, sol.search.nominal_bound);
+        EXPECT_GE(p.search.certified_bound, 1.0);
+        EXPECT_LE(p.search.certified_bound, p.search.nominal_bound);
+        EXPECT_EQ(p.poses.front().x, sol.poses.front().x);
+        EXPECT_EQ(p.poses.back().y, sol.poses.back().y);
+        if (step.republished) {
+          ++republished;
+          EXPECT_LT(p.search.cost, step.smoothed.cost);
+          EXPECT_TRUE(step.same_as_previous);
+        } else {
+          EXPECT_EQ(p.search.cost, step.smoothed.cost);
+        }
+        if (previous != nullptr) {
+          EXPECT_LE(p.search.cost, last.search.cost);
+          EXPECT_LE(p.search.certified_bound, last.search.certified_bound);
+          if (step.same_as_previous) {
+            EXPECT_EQ(p.poses.size(), last.poses.size());
+          }
+          if (previous->search.path == sol.search.path) {
+            EXPECT_TRUE(step.same_as_previous);
+            EXPECT_EQ(p.search.cost, last.search.cost);
+          }
+        }
+        previous = &sol;
+        last = p;
+      }
+    }
+  }
+  EXPECT_GT(steps, 100);
+  std::printf("%d streamed solutions, %d republished an earlier smoothed path\n", steps, republished);
+}
+
+/// The poses of the motions `primitives` (indices) driven one after the other from (x, y, h).
+std::vector<Pose2D> posesOf(const LatticeGraph& g, int x, int y, int h, const std::vector<int>& primitives) {
+  std::vector<Pose2D> poses{g.stateToPose(x, y, h)};
+  for (int i : primitives) {
+    const MotionPrimitive& p = g.primitives().primitives[i];
+    EXPECT_EQ(p.start_heading, h);
+    for (std::size_t k = 1; k < p.poses.size(); ++k) poses.push_back(g.cellPoseToMap(x, y, p.poses[k]));
+    x += p.end_dx;
+    y += p.end_dy;
+    h = p.end_heading;
+  }
+  return poses;
+}
+
+/// The primitive from heading h to heading e that moves (or turns in place).
+int primitiveOf(const LatticeGraph& g, int h, int e, bool moves, int dx = 0) {
+  const auto range = g.primitives().range(h);
+  for (std::size_t i = range.first; i < range.second; ++i) {
+    const MotionPrimitive& p = g.primitives().primitives[i];
+    if (p.end_heading == e && (p.end_dx != 0 || p.end_dy != 0) == moves && (dx == 0 || p.end_dx == dx)) return static_cast<int>(i);
+  }
+  ADD_FAILURE() << "no primitive " << h << " -> " << e;
+  return 0;
+}
+
+TEST(PathSmootherTest, StreamRepublishesAnEarlierSmoothedPathThatCostsLess) {
+  // Solution 1 zig-zags (costly, but smooths into the straight line); solution 2 is cheaper as a
+  // lattice path but turns on the spot first, which smoothing keeps: its smoothed path costs
+  // more than solution 1's, so solution 1's is sent again, with solution 2's bounds.
+  auto map = test::randomMap(120, 40, 0.05, 1, 0, 0);
+  LatticeConfig c;
+  c.turning_radius = 0.3;
+  c.robot_radius = 0.1;
+  c.time_to_turn_45 = 0.1;  // quick turns on the spot
+  const LatticeGraph g(map, c);
+  const PathSmoother smoother(g);
+  const int n = g.numHeadings();
+  std::vector<int> zigzag;
+  for (int k = 0; k < 6; ++k) {
+    for (int side : {1, n - 1}) {  // left and back, right and back
+      zigzag.push_back(primitiveOf(g, 0, side, true));
+      zigzag.push_back(primitiveOf(g, side, 0, true));
+    }
+  }
+  std::vector<Pose2D> p1 = posesOf(g, 5, 20, 0, zigzag);
+  int gx = 0, gy = 0, gh = 0;
+  ASSERT_TRUE(g.poseToState(p1.back(), &gx, &gy, &gh));
+  ASSERT_EQ(gy, 20);
+  ASSERT_EQ(gh, 0);
+  std::vector<int> tip_then_straight = {primitiveOf(g, 0, 1, false), primitiveOf(g, 1, 0, false)};
+  for (int x = 5; x < gx; ++x) tip_then_straight.push_back(primitiveOf(g, 0, 0, true, 1));
+  const std::vector<Pose2D> p2 = posesOf(g, 5, 20, 0, tip_then_straight);
+  const SmoothedPath s1 = smoother.smooth(p1), s2 = smoother.smooth(p2);
+  ASSERT_LT(s2.lattice_cost, s1.lattice_cost) << "the setting needs solution 2 cheaper as a lattice path";
+  ASSERT_LT(s1.cost, s2.cost) << "and solution 1 cheaper smoothed";
+
+  LatticeSolution a, b;
+  a.poses = p1;
+  a.search.path = {1};
+  a.search.cost = s1.lattice_cost;
+  a.search.nominal_bound = 3.0;
+  a.search.certified_bound = 2.0;
+  b.poses = p2;
+  b.search.path = {2};
+  b.search.cost = s2.lattice_cost;
+  b.search.nominal_bound = 1.5;
+  b.search.certified_bound = 1.2;
+  SmoothedStream stream(smoother);
+  const double first_certified = stream.add(a).published.search.certified_bound;
+  const SmoothedStream::Step& step = stream.add(b);
+  EXPECT_TRUE(step.republished);
+  EXPECT_TRUE(step.same_as_previous);
+  EXPECT_EQ(step.published.search.cost, s1.cost);
+  EXPECT_EQ(step.smoothed.cost, s2.cost);
+  ASSERT_EQ(step.published.poses.size(), s1.poses.size());
+  EXPECT_EQ(step.published.search.nominal_bound, 1.5);
+  // cost_1' <= cost_2' <= cost_2 <= 1.2 x optimum, so 1.2 x cost_1' / cost_2 bounds it.
+  EXPECT_NEAR(step.published.search.certified_bound,
+              std::min(first_certified, std::max(1.0, 1.2 * static_cast<double>(s1.cost) / static_cast<double>(s2.lattice_cost))), 1e-12);
 }
 
 TEST(PathSmootherTest, SmoothsTheBundledMapWithinTheGuarantees) {

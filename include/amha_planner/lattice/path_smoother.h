@@ -130,5 +130,32 @@ class PathSmoother {
 /// still a true bound). nominal_bound stays: cost <= raw cost <= nominal_bound x optimum.
 LatticeSolution smoothedSolution(const LatticeSolution& raw, const SmoothedPath& smoothed);
 
+/// Smooths the solutions of one plan() as they stream in, for publishing: each solution's
+/// lattice path is smoothed (once per distinct path), and if an earlier solution's smoothed path
+/// costs less it is published again instead, so the published cost never rises (a cheaper
+/// lattice path may smooth less well). Bounds of a republished path: cost <= this solution's
+/// smoothed cost <= its lattice cost <= its nominal bound x optimum, so its nominal bound
+/// holds, and its certified bound is scaled as in smoothedSolution. Certified bounds never rise
+/// either: the previous one holds for a path no costlier. Not thread-safe.
+class SmoothedStream {
+ public:
+  explicit SmoothedStream(const PathSmoother& smoother) : smoother_(smoother) {}
+
+  struct Step {
+    LatticeSolution published;  ///< poses, cost and bounds to publish
+    SmoothedPath smoothed;      ///< this solution's own smoothed path
+    bool republished = false;   ///< published is an earlier solution's smoothed path
+    bool same_as_previous = false;  ///< published.poses are the previous step's
+  };
+  /// Throws what PathSmoother::smooth throws.
+  const Step& add(const LatticeSolution& raw);
+
+ private:
+  const PathSmoother& smoother_;
+  Step step_;
+  std::vector<StateId> last_ids_;  // of the last lattice path smoothed
+  bool started_ = false;
+};
+
 }  // namespace lattice
 }  // namespace amha
