@@ -6,6 +6,10 @@
 namespace amha {
 namespace cli {
 
+// Below this curvature (1/m: a radius of a kilometre) a step counts as straight, so that
+// rounding does not count as turning left or right.
+constexpr double kStraight = 1e-3;
+
 PathMetrics pathMetrics(const std::vector<lattice::Pose2D>& poses) {
   PathMetrics m;
   double turned = 0.0, bent = 0.0;
@@ -21,7 +25,7 @@ PathMetrics pathMetrics(const std::vector<lattice::Pose2D>& poses) {
     m.length += chord;
     bent += curvature * chord;
     m.max_curvature = std::max(m.max_curvature, curvature);
-    if (std::fabs(dth) < 1e-9) continue;  // straight: no side
+    if (curvature < kStraight) continue;  // straight: no side
     const int sign = dth > 0.0 ? 1 : -1;
     m.curvature_sign_changes += last_sign != 0 && sign != last_sign;
     last_sign = sign;

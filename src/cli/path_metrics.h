@@ -15,7 +15,8 @@ struct PathMetrics {
   double mean_curvature = 0.0;            ///< 1/m, |curvature| averaged over the length driven
   double max_curvature = 0.0;             ///< 1/m, largest |curvature| while driving
   double heading_change_per_metre = 0.0;  ///< total |dtheta| (turns in place included) / length
-  int curvature_sign_changes = 0;         ///< left to right turns and back, while driving
+  int curvature_sign_changes = 0;         ///< left to right turns and back, while driving (steps
+                                          ///< under 1e-3 /m count as straight, not as a side)
 };
 
 /// Steps that do not move (turns in place) add heading change only.

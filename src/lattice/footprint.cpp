@@ -166,7 +166,11 @@ std::vector<std::array<double, 2>> RobotFootprint::at(const Pose2D& pose) const 
 }
 
 void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res, std::vector<CellPoint>& out) {
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  footprintInCells(f, pose, res, out, std::cos(pose.theta), std::sin(pose.theta));
+}
+
+void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res, std::vector<CellPoint>& out, double c,
+                      double s) {
   out.resize(f.polygon.size());
   for (std::size_t k = 0; k < f.polygon.size(); ++k) {
     const auto& v = f.polygon[k];

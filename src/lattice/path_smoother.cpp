@@ -121,10 +121,6 @@ PathSmoother::PathSmoother(const LatticeGraph& graph, const SmootherOptions& opt
       << model << " m (0: the model's)";
     throw std::invalid_argument(m.str());
   }
-  for (double f : options.wider_radius_factors) {
-    if (!std::isfinite(f) || f < 1.0) throw std::invalid_argument("smoothing radius factors must be finite and >= 1");
-  }
-  std::sort(options_.wider_radius_factors.rbegin(), options_.wider_radius_factors.rend());
   piece_length_ = std::max(longestPrimitiveLength(graph), graph.map().resolution);
   const LatticeConfig& c = graph.config();
   omega_ = c.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / c.time_to_turn_45 : 0.0;
@@ -135,13 +131,13 @@ PathSmoother::PathSmoother(const LatticeGraph& graph, const SmootherOptions& opt
   }
 }
 
-std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& poses) const {
+std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& poses, std::vector<Pose2D>& g) const {
   const GridMap& m = graph_.map();
   const PrimitiveSet& set = graph_.primitives();
   const double res = m.resolution, co = std::cos(m.origin_yaw), so = std::sin(m.origin_yaw);
   const std::size_t n = poses.size();
   // The poses in the grid frame (metres from the map's corner, radians).
-  std::vector<Pose2D> g(n);
+  g.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Pose2D& p = poses[k];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta)) {
@@ -169,9 +165,10 @@ std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& p
     collides = false;
     const int x = static_cast<int>(std::floor(g[k].x / res)), y = static_cast<int>(std::floor(g[k].y / res));
     if (x < 0 || y < 0 || x >= m.width || y >= m.height) continue;
+    // The state a motion ended in: its last pose discretises to it (as the .mprim reader
+    // checks), but need not be its exact centre (files round their poses).
     const int h = set.headingIndex(g[k].theta);
     const double cx = (x + 0.5) * res, cy = (y + 0.5) * res;
-    if (!same(g[k], cx, cy, set.heading_angles[h])) continue;
     for (const LatticeAction* a = graph_.actionsBegin(h); a != graph_.actionsEnd(h); ++a) {
       const std::vector<Pose2D>& pp = set.primitives[a->primitive].poses;
       const std::size_t last = k + pp.size() - 1;
@@ -226,8 +223,9 @@ struct CellBox {
         i1(static_cast<int>(std::floor(maxx + kRasterEpsilon))),
         j0(static_cast<int>(std::ceil(miny - 1.0 - kRasterEpsilon))),
         j1(static_cast<int>(std::floor(maxy + kRasterEpsilon))) {}
+  /// Around the points of a and b, grown by `grow` cells.
   template <class Points>
-  static CellBox around(const Points& a, const Points& b) {
+  static CellBox around(const Points& a, const Points& b, double grow = 0.0) {
     double minx = a[0].x, maxx = a[0].x, miny = a[0].y, maxy = a[0].y;
     for (const auto* set : {&a, &b}) {
       for (const CellPoint& p : *set) {
@@ -237,18 +235,18 @@ struct CellBox {
         maxy = std::max(maxy, p.y);
       }
     }
-    return CellBox(minx, maxx, miny, maxy);
+    return CellBox(minx - grow, maxx + grow, miny - grow, maxy + grow);
   }
 };
 
 /// Is a cell of the box (relative to cell (x0, y0)) lethal, unknown or outside the map?
-bool boxBlocked(const GridMap& m, int x0, int y0, const CellBox& b) {
+inline bool boxBlocked(const GridMap& m, int x0, int y0, const CellBox& b) {
   if (x0 + b.i0 < 0 || y0 + b.j0 < 0 || x0 + b.i1 >= m.width || y0 + b.j1 >= m.height) return true;
   for (int j = b.j0; j <= b.j1; ++j) {
     const std::uint8_t* row = &m.cost[static_cast<std::size_t>(y0 + j) * m.width + x0];
-    for (int i = b.i0; i <= b.i1; ++i) {
-      if (row[i] >= kLethalCost) return true;
-    }
+    std::uint8_t worst = 0;  // a maximum without branches, which the compiler vectorises
+    for (int i = b.i0; i <= b.i1; ++i) worst = std::max(worst, row[i]);
+    if (worst >= kLethalCost) return true;
   }
   return false;
 }
@@ -259,6 +257,7 @@ struct PathSmoother::Scratch {
   std::vector<CellPoint> prev, cur;
   std::vector<CellOffset> cells;
   std::vector<double> along;  // path length from the first pose to each (metres)
+  std::vector<std::size_t> near;  // footprint edges with a blocked cell near them in a step
 };
 
 bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, std::size_t first, std::size_t last,
@@ -277,26 +276,44 @@ bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, s
   if (last - first > 1) {
     return sweepFree(x0, y0, poses, first, mid, scratch) && sweepFree(x0, y0, poses, mid, last, scratch);
   }
-  // One step: the cells primitiveCells would give it, rasterised only where a box around them
-  // holds a blocked cell (then the exact cells decide).
+  // One step: the cells primitiveCells would give it, rasterised only for the edges with a
+  // blocked cell near them (then the exact cells decide).
   std::vector<CellPoint>& prev = scratch.prev;
   std::vector<CellPoint>& cur = scratch.cur;
   std::vector<CellOffset>& cells = scratch.cells;
-  footprintInCells(f, poses[first], res, prev);
-  const int steps = sweepSteps(f, poses[first], poses[last], res);
+  std::vector<std::size_t>& near = scratch.near;
+  const Pose2D& a = poses[first];
+  const Pose2D& b = poses[last];
+  footprintInCells(f, a, res, prev);
+  // No vertex moves farther than the step's length plus its radius times the turn: a box that
+  // far around an edge's first position holds all of its positions in the step.
+  const double move = (std::hypot(b.x - a.x, b.y - a.y) + f.circumscribed_radius * std::fabs(smallAngle(b.theta - a.theta))) / res;
+  const std::size_t vertices = prev.size();
+  near.clear();
+  for (std::size_t e = 0; e < vertices; ++e) {
+    const std::array<CellPoint, 2> edge{prev[e], prev[(e + 1) % vertices]};
+    if (boxBlocked(m, x0, y0, CellBox::around(edge, edge, move))) near.push_back(e);
+  }
+  if (near.empty()) return true;
+  const int steps = sweepSteps(f, a, b, res);
+  // A straight step keeps its heading: its placements share one sine and cosine.
+  const bool straight = a.theta == b.theta;
+  const double cos_a = std::cos(a.theta), sin_a = std::sin(a.theta);
   for (int s = 1; s <= steps; ++s) {
-    footprintInCells(f, sweepSample(poses[first], poses[last], s, steps), res, cur);
-    if (boxBlocked(m, x0, y0, CellBox::around(prev, cur))) {
-      const std::size_t n = prev.size();
-      for (std::size_t e = 0; e < n; ++e) {
-        const std::array<CellPoint, 2> a{prev[e], prev[(e + 1) % n]}, b{cur[e], cur[(e + 1) % n]};
-        if (!boxBlocked(m, x0, y0, CellBox::around(a, b))) continue;
-        cells.clear();
-        rasterizeEdgeSweep(prev, cur, e, cells);
-        for (const CellOffset& c : cells) {
-          const int cx = x0 + c.dx, cy = y0 + c.dy;
-          if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost) return false;
-        }
+    const Pose2D sample = sweepSample(a, b, s, steps);
+    if (straight) {
+      footprintInCells(f, sample, res, cur, cos_a, sin_a);
+    } else {
+      footprintInCells(f, sample, res, cur);
+    }
+    for (std::size_t e : near) {
+      const std::array<CellPoint, 2> from{prev[e], prev[(e + 1) % vertices]}, to{cur[e], cur[(e + 1) % vertices]};
+      if (!boxBlocked(m, x0, y0, CellBox::around(from, to))) continue;
+      cells.clear();
+      rasterizeEdgeSweep(prev, cur, e, cells);
+      for (const CellOffset& o : cells) {
+        const int cx = x0 + o.dx, cy = y0 + o.dy;
+        if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost) return false;
       }
     }
     std::swap(prev, cur);
@@ -313,6 +330,19 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
   std::vector<CellOffset>& cells = scratch.cells;
   std::vector<double>& along = scratch.along;
   along.assign(1, 0.0);
+  const RobotFootprint& f = graph_.footprint();
+  if (!f.polygon.empty()) {
+    // The footprint at the first pose, as primitiveCells has it.
+    footprintInCells(f, poses.front(), res, scratch.prev);
+    if (boxBlocked(m, x0, y0, CellBox::around(scratch.prev, scratch.prev))) {
+      cells.clear();
+      rasterizePolygon(scratch.prev, cells);
+      for (const CellOffset& o : cells) {
+        const int cx = x0 + o.dx, cy = y0 + o.dy;
+        if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost) return kInvalidEdge;
+      }
+    }
+  }
   Cost total = 0;
   std::size_t first = 0;
   while (first + 1 < poses.size()) {
@@ -355,6 +385,8 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
     const Cost cost = graph_.costWithPenalty(base, worst);
     total += cost;
     if (total > budget) return kInvalidEdge;
+    // The piece's sweep now, so that a collision ends a hopeless trial early.
+    if (!f.polygon.empty() && !sweepFree(x0, y0, poses, first, last, scratch)) return kInvalidEdge;
     if (pieces != nullptr) {
       SmoothedPiece piece;
       piece.first = first;
@@ -366,19 +398,7 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
     }
     first = last;
   }
-  const RobotFootprint& f = graph_.footprint();
-  if (f.polygon.empty()) return total;
-  // The footprint at the first pose (as primitiveCells has it), then the sweep.
-  footprintInCells(f, poses.front(), res, scratch.prev);
-  if (boxBlocked(m, x0, y0, CellBox::around(scratch.prev, scratch.prev))) {
-    cells.clear();
-    rasterizePolygon(scratch.prev, cells);
-    for (const CellOffset& o : cells) {
-      const int cx = x0 + o.dx, cy = y0 + o.dy;
-      if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost) return kInvalidEdge;
-    }
-  }
-  return sweepFree(x0, y0, poses, 0, poses.size() - 1, scratch) ? total : kInvalidEdge;
+  return total;
 }
 
 Cost PathSmoother::motionCost(int x, int y, const std::vector<Pose2D>& poses, double multiplier) const {
@@ -386,28 +406,28 @@ Cost PathSmoother::motionCost(int x, int y, const std::vector<Pose2D>& poses, do
   return shortcutCost(x, y, poses, multiplier, std::numeric_limits<Cost>::max(), nullptr, scratch);
 }
 
-bool PathSmoother::tryShortcut(const Edge& from, const Edge& to, bool backward, double radius, double multiplier,
-                               Cost budget, Candidate& out, Scratch& scratch) const {
-  const GridMap& m = graph_.map();
-  const PrimitiveSet& set = graph_.primitives();
-  const double res = m.resolution;
-  const LatticeAction& last = graph_.actions()[to.action];
-  // The end state, relative to the first state's cell centre; travel directions for Dubins.
-  const int ex = to.x + last.dx, ey = to.y + last.dy;
-  const double flip = backward ? M_PI : 0.0;
-  const Pose2D a{0.0, 0.0, set.heading_angles[from.heading] + flip};
-  const Pose2D b{(ex - from.x) * res, (ey - from.y) * res, set.heading_angles[last.end_heading] + flip};
+bool PathSmoother::tryShortcut(const Pose2D& a_grid, const Pose2D& b_grid, int x0, int y0, bool backward, double radius,
+                               double multiplier, Cost budget, Candidate& out, Scratch& scratch) const {
+  const double res = graph_.map().resolution;
+  // From the input's pose where motion i starts to its pose where motion j - 1 ends (a file's
+  // motions may end a little off the state's centre and heading: the curve meets them there),
+  // relative to the first state's cell centre; travel directions for Dubins.
+  const double cx = (x0 + 0.5) * res, cy = (y0 + 0.5) * res, flip = backward ? M_PI : 0.0;
+  const Pose2D a{a_grid.x - cx, a_grid.y - cy, a_grid.theta + flip};
+  const Pose2D b{b_grid.x - cx, b_grid.y - cy, b_grid.theta + flip};
   const DubinsPath path = shortestDubinsPath(a, b, radius);
   // Hopeless by length alone (the poses' chords are within 1 % of the arcs; each piece rounds
   // up by less than a unit): no need to look at the map.
   const double pieces = std::ceil(path.totalLength() / piece_length_) + 1.0;
   if (0.99 * kCostUnitsPerMetre * path.totalLength() * multiplier - 2.0 * pieces > static_cast<double>(budget)) return false;
-  sampleDubinsPath(path, 0.5 * res, out.poses);
+  // A pose per cell (the generated primitives have two; arcs of the turning radius deviate
+  // from their chords by less than a hundredth of a cell at 5 cm cells and 0.3 m).
+  sampleDubinsPath(path, res, out.poses);
   for (Pose2D& p : out.poses) p.theta -= flip;
-  out.poses.front() = {0.0, 0.0, set.heading_angles[from.heading]};
-  out.poses.back() = {b.x, b.y, set.heading_angles[last.end_heading]};
+  out.poses.front() = {a.x, a.y, a_grid.theta};
+  out.poses.back() = {b.x, b.y, b_grid.theta};
   out.pieces.clear();
-  out.cost = shortcutCost(from.x, from.y, out.poses, multiplier, budget, &out.pieces, scratch);
+  out.cost = shortcutCost(x0, y0, out.poses, multiplier, budget, &out.pieces, scratch);
   return out.cost != kInvalidEdge;
 }
 
@@ -416,7 +436,8 @@ SmoothedPath PathSmoother::smooth(const std::vector<Pose2D>& input) const {
   SmoothedPath out;
   out.turning_radius = radius_;
   if (input.empty()) throw std::invalid_argument("lattice path: no poses");
-  const std::vector<Edge> edges = parse(input);
+  std::vector<Pose2D> grid;
+  const std::vector<Edge> edges = parse(input, grid);
   for (const Edge& e : edges) out.lattice_cost += e.cost;
   out.poses.push_back(input.front());
 
@@ -467,7 +488,8 @@ SmoothedPath PathSmoother::smooth(const std::vector<Pose2D>& input) const {
           multiplier = std::max(multiplier, actions_[edges[k].action].multiplier);
         }
         c.to_edge = j - 1;
-        return tryShortcut(edges[i], edges[j - 1], backward, radius, multiplier, budget, c, scratch);
+        return tryShortcut(grid[edges[i].first], grid[edges[j - 1].last], edges[i].x, edges[i].y, backward, radius,
+                           multiplier, budget, c, scratch);
       };
       std::size_t ok = i + 1, fail = end + 1;  // replacing [i, ok) works, [i, fail) does not
       if ((motion == MotionKind::kForward || motion == MotionKind::kBackward) && std::isfinite(radius_)) {
@@ -495,12 +517,6 @@ SmoothedPath PathSmoother::smooth(const std::vector<Pose2D>& input) const {
         keep(edges[i]);
         ++i;
         continue;
-      }
-      for (double factor : options_.wider_radius_factors) {
-        if (factor > 1.0 && attempt(ok, radius_ * factor, trial)) {
-          std::swap(found, trial);
-          break;
-        }
       }
       take(edges[i], found, backward);
       i = ok;

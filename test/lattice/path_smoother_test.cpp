@@ -94,8 +94,10 @@ std::vector<Model> models() {
 }
 
 /// Checks one smoothed path against its lattice path; returns "" or what is wrong.
+/// Curvature and heading continuity are checked on shortcuts, and on kept motions too when
+/// `kept_too` (generated primitives: exact arcs and lines; a file's poses are its own, rounded).
 std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother, const std::vector<Pose2D>& raw,
-                          Cost raw_cost, const SmoothedPath& s) {
+                          Cost raw_cost, const SmoothedPath& s, bool kept_too = true) {
   if (s.poses.front().x != raw.front().x || s.poses.front().y != raw.front().y || s.poses.front().theta != raw.front().theta) {
     return "start pose changed";
   }
@@ -110,6 +112,7 @@ std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother, c
   if (!v.empty()) return v;
   const double kmax = 1.0 / smoother.turningRadius();
   for (const SmoothedPiece& p : s.pieces) {
+    if (!p.shortcut && !kept_too) continue;
     for (std::size_t k = p.first; k < p.last; ++k) {
       const Pose2D& a = s.poses[k];
       const Pose2D& b = s.poses[k + 1];
@@ -119,7 +122,17 @@ std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother, c
         continue;  // the model's own turn in place
       }
       // Kept motions bend no tighter either: the radius is the tightest of the model's.
-      if (stepCurvature(a, b) > kmax * (1.0 + 1e-6)) return "curvature " + std::to_string(stepCurvature(a, b)) + " at pose " + std::to_string(k);
+      if (stepCurvature(a, b) > kmax * (1.0 + 1e-6)) {
+        std::string d;
+        for (std::size_t q = (k > 3 ? k - 3 : 0); q < std::min(s.poses.size(), k + 4); ++q) {
+          char buf[200];
+          std::snprintf(buf, sizeof buf, "\n  %zu: %.6f %.6f %.6f", q, s.poses[q].x, s.poses[q].y, s.poses[q].theta);
+          d += buf;
+        }
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "\n piece [%zu,%zu] shortcut %d backward %d", p.first, p.last, p.shortcut, p.backward);
+        return "curvature " + std::to_string(stepCurvature(a, b)) + " at pose " + std::to_string(k) + d + buf;
+      }
       // Heading continuous along the motion: the direction of each step differs from the
       // heading at either end by no more than the curvature bound lets it turn within the step
       // (a step across an inflection may leave the range between its two headings).
@@ -371,6 +384,44 @@ TEST(PathSmootherTest, SmoothsTheBundledMapWithinTheGuarantees) {
     EXPECT_EQ(checkSmoothed(planner.graph(), smoother, sol.poses, sol.search.cost, s), "");
     EXPECT_LT(s.cost, s.lattice_cost);
   }
+}
+
+TEST(PathSmootherTest, SbplPrimitiveFilesKeepEveryGuarantee) {
+  // pr2.mprim: SBPL's primitives (poses rounded to 0.1 mm, so motions end near, not at, cell
+  // centres; backward motions; turns in place), a square robot, random maps with costs.
+  AMHA_REQUIRE_SHARED_DATA(data);
+  LatticeConfig c;
+  c.mprim_file = data + "/sbpl/pr2.mprim";
+  c.footprint = test::rectangle(0.15, 0.1);
+  c.cost_penalty = 2.0;
+  int paths = 0, shortened = 0;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    auto map = test::randomMap(140, 120, 0.025, 500 + seed, 12, seed % 2 ? 100 : 0);
+    LatticePlanner planner(map, c);
+    const LatticeGraph& g = planner.graph();
+    const PathSmoother smoother(g);
+    std::mt19937 rng(seed);
+    for (int q = 0, found = 0; q < 40 && found < 3; ++q) {
+      const int sx = static_cast<int>(rng() % g.width()), sy = static_cast<int>(rng() % g.height());
+      const int gx = static_cast<int>(rng() % g.width()), gy = static_cast<int>(rng() % g.height());
+      const int sh = static_cast<int>(rng() % g.numHeadings()), gh = static_cast<int>(rng() % g.numHeadings());
+      if (!g.stateValid(sx, sy, sh) || !g.stateValid(gx, gy, gh) || std::hypot(gx - sx, gy - sy) < 40) continue;
+      SearchLimits limits;
+      limits.time_limit_s = 2.0;
+      const PlanResult r = planner.plan(g.stateToPose(sx, sy, sh), g.stateToPose(gx, gy, gh),
+                                        defaultConfig(Algorithm::kAmhaStar), limits);
+      if (r.solutions.empty()) continue;
+      ++found;
+      for (const LatticeSolution& sol : r.solutions) {
+        const SmoothedPath s = smoother.smooth(sol.poses);
+        ASSERT_EQ(checkSmoothed(g, smoother, sol.poses, sol.search.cost, s, false), "") << "seed " << seed << " query " << q;
+        ++paths;
+        shortened += s.cost < s.lattice_cost;
+      }
+    }
+  }
+  EXPECT_GT(paths, 15);
+  EXPECT_GT(shortened, paths / 2);
 }
 
 TEST(PathSmootherTest, RefusesWhatIsNotALatticePath) {

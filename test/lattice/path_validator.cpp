@@ -248,7 +248,7 @@ std::string validateSmoothedPath(const ValidatorModel& m, const SmoothedPath& pa
       const LatticeState s{static_cast<int>(std::floor(g[piece.first].x / res)), static_cast<int>(std::floor(g[piece.first].y / res)),
                            p.start_heading};
       if (p.poses.size() != piece.last - piece.first + 1) return name + ": not its primitive's poses";
-      for (std::size_t k = 0; k < p.poses.size(); ++k) {
+      for (std::size_t k = 1; k < p.poses.size(); ++k) {  // the first is the previous motion's last
         const Pose2D& q = g[piece.first + k];
         if (std::fabs(q.x - ((s.x + 0.5) * res + p.poses[k].x)) > 1e-6 || std::fabs(q.y - ((s.y + 0.5) * res + p.poses[k].y)) > 1e-6 ||
             std::fabs(std::remainder(q.theta - p.poses[k].theta, 2.0 * M_PI)) > 1e-6) {

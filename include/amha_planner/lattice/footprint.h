@@ -79,6 +79,9 @@ Pose2D sweepSample(const Pose2D& a, const Pose2D& b, int s, int n);
 /// (which is the square [0, 1] x [0, 1]); `out` is overwritten.
 void footprintInCells(const RobotFootprint& footprint, const Pose2D& pose, double resolution,
                       std::vector<CellPoint>& out);
+/// The same with cos(pose.theta) and sin(pose.theta) given (placements at one heading).
+void footprintInCells(const RobotFootprint& footprint, const Pose2D& pose, double resolution,
+                      std::vector<CellPoint>& out, double cos_theta, double sin_theta);
 /// Appends the cells the edges of the footprint sweep from placement `from` to `to` (both from
 /// footprintInCells): for each edge, the quadrilateral between its two positions (exact for a
 /// translation).

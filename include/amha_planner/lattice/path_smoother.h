@@ -20,16 +20,13 @@ struct SmootherOptions {
   /// Minimum turning radius of the joining curves (metres); 0: the motion model's
   /// (modelTurningRadius). Smaller than the model's is refused.
   double turning_radius = 0.0;
-  /// Each shortcut is first tried with arcs this many times wider (largest first), for gentler
-  /// turns where they fit; the minimum radius is always tried last.
-  std::vector<double> wider_radius_factors = {4.0, 2.0};
 };
 
 /// One stretch of a smoothed path: poses [first, last] of SmoothedPath::poses.
 struct SmoothedPiece {
   std::size_t first = 0, last = 0;
-  /// True: part of a curve that replaced lattice motions (a Dubins path between two of the
-  /// lattice path's states). False: a lattice motion kept as it was.
+  /// True: part of a curve that replaced lattice motions (a Dubins path between the lattice
+  /// path's poses at two of its states). False: a lattice motion kept as it was.
   bool shortcut = false;
   bool backward = false;     ///< driven in reverse (the heading points against the motion)
   int primitive = -1;        ///< kept motions: the primitive (index into PrimitiveSet::primitives)
@@ -73,13 +70,15 @@ double longestPrimitiveLength(const LatticeGraph& graph);
 ///
 /// The input is split into driving stretches at turns in place, reversals and motions that
 /// change direction inside; within a stretch, greedily from its start, the farthest later state
-/// that a Dubins path (radius turning_radius, or wider first) reaches collision-free and no
-/// costlier than the motions it replaces is joined to it (found by doubling, then bisection).
-/// A shortcut's poses are at most half a cell apart, and it is tested exactly as the lattice
-/// tests a primitive from its first state (centre cells below inscribed, swept cells below
-/// lethal, inside the map; the swept test is skipped only where the clearance map proves every
-/// swept cell free, as LatticeGraph::edgeCost does). Its cost is that of consecutive pieces of
-/// at most longestPrimitiveLength(), each by LatticeConfig's formula: round(ceil(1000 x max(L,
+/// that a Dubins path (radius turningRadius()) reaches collision-free and no costlier than the
+/// motions it replaces is joined to it (found by doubling, then bisection). The curve runs
+/// between the input's own poses at the two states (a file's motions may end a little off a
+/// state's centre and heading). Its poses are at most a cell apart, and it is tested exactly as
+/// the lattice tests a primitive from its first state: centre cells below inscribed, swept cells
+/// (primitiveCells' sweep steps) below lethal, all inside the map; cells are rasterised only
+/// where the clearance classes do not prove them free (as LatticeGraph::edgeCost skips) and a
+/// box around them holds a blocked cell. Its cost is that of consecutive pieces of at most
+/// longestPrimitiveLength(), each by LatticeConfig's formula: round(ceil(1000 x max(L,
 /// nominal_speed x total |dtheta| / omega)) x m) plus the penalty of the worst centre cell of the
 /// piece, with m the largest multiplier of the motions it replaces.
 class PathSmoother {
@@ -106,10 +105,12 @@ class PathSmoother {
   };
   struct Edge;
   struct Candidate;
-  std::vector<Edge> parse(const std::vector<Pose2D>& poses) const;
+  /// The input's motions; `grid` receives its poses in the grid frame (metres from the map's
+  /// corner).
+  std::vector<Edge> parse(const std::vector<Pose2D>& poses, std::vector<Pose2D>& grid) const;
   struct Scratch;  // buffers of one smooth() call
-  bool tryShortcut(const Edge& from, const Edge& to, bool backward, double radius, double multiplier, Cost budget,
-                   Candidate& out, Scratch& scratch) const;
+  bool tryShortcut(const Pose2D& from, const Pose2D& to, int x0, int y0, bool backward, double radius,
+                   double multiplier, Cost budget, Candidate& out, Scratch& scratch) const;
   Cost shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses, double multiplier, Cost budget,
                     std::vector<SmoothedPiece>* pieces, Scratch& scratch) const;
   bool sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, std::size_t first, std::size_t last,
