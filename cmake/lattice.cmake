@@ -73,9 +73,11 @@ add_test(NAME amha_plan_any_goal_heading
          COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --algorithm astar --time-limit 20); fixed=$(\"$0\" \"\${args[@]}\" | grep -o 'cost=[0-9]*' | tail -1 | cut -d= -f2); free=$(\"$0\" \"\${args[@]}\" --any-goal-heading | grep -o 'cost=[0-9]*' | tail -1 | cut -d= -f2); echo \"fixed $fixed free $free\"; [ -n \"$free\" ] && [ -n \"$fixed\" ] && [ \"$free\" -lt \"$fixed\" ]"
                  $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
-# A costmap read as the server reads it (--lethal-threshold 100) and --smooth, end to end.
+# A costmap read as the server reads it (--lethal-threshold 100) and --smooth, end to end, and
+# the README's example on the bundled costmap.
 add_test(NAME amha_plan_costmap_and_smooth
-         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_costmap_smooth_test.sh $<TARGET_FILE:amha>)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_costmap_smooth_test.sh $<TARGET_FILE:amha>
+                 ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-costmap-r025.yaml)
 
 amha_add_gtest(amha_lattice_tests
   SOURCES

@@ -4,9 +4,12 @@
 # a door whose inflated cells are >= 65: read with map_server's threshold the door is shut (no
 # path, exit 7); with --lethal-threshold 100, as the server reads a costmap, it is open. --smooth
 # writes the smoothed path and the lattice path to the JSON, no costlier, same start and goal.
-# Usage: plan_costmap_smooth_test.sh path/to/amha
+# With a second argument, the README's example: the bundled Willow Garage costmap
+# (maps/willow_garage/willow-costmap-r025.yaml), no path with 65, a path with 100.
+# Usage: plan_costmap_smooth_test.sh path/to/amha [path/to/willow-costmap-r025.yaml]
 set -euo pipefail
 amha=$1
+example=${2:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -66,4 +69,15 @@ rc2=$?
 set -e
 [ "$rc" -eq 2 ] && grep -q "applies to map_server .yaml maps" "$tmp/cfg.out" || { cat "$tmp/cfg.out"; fail "a threshold for a .cfg map should be refused"; }
 [ "$rc2" -eq 2 ] && grep -q "not in 1..100" "$tmp/range.out" || { cat "$tmp/range.out"; fail "threshold 101 should be refused"; }
+if [ -n "$example" ]; then
+  readme=(plan --map "$example" --radius 0.25 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --time-limit 20)
+  set +e
+  "$amha" "${readme[@]}" > "$tmp/readme65.out" 2>&1
+  rc=$?
+  set -e
+  [ "$rc" -eq 7 ] || { cat "$tmp/readme65.out"; fail "the README's costmap with threshold 65: expected no path (7), got $rc"; }
+  "$amha" "${readme[@]}" --lethal-threshold 100 --smooth > "$tmp/readme100.out" 2>&1 ||
+    { cat "$tmp/readme100.out"; fail "the README's costmap example found no path"; }
+  grep -q "^smoothed path: length" "$tmp/readme100.out" || fail "the README's example printed no smoothed path"
+fi
 echo "PASS"

@@ -174,6 +174,7 @@ TEST(PathSmootherTest, ShortcutTestIsTheLatticeEdgeTest) {
   }
   EXPECT_GT(compared, 2000);
   EXPECT_GT(invalid, 100) << "the states should include collisions";
+  std::printf("%d state-primitive pairs compared, %d of them colliding\n", compared, invalid);
 }
 
 TEST(PathSmootherTest, RandomMapsRobotsAndAlgorithmsKeepEveryGuarantee) {
