@@ -111,7 +111,7 @@ struct PathSmoother::Candidate {
 };
 
 PathSmoother::PathSmoother(const LatticeGraph& graph, const SmootherOptions& options)
-    : graph_(graph), options_(options) {
+    : graph_(graph) {
   const double model = modelTurningRadius(graph);
   radius_ = options.turning_radius > 0.0 ? options.turning_radius : model;
   if (!std::isfinite(options.turning_radius) || options.turning_radius < 0.0 ||

@@ -118,7 +118,6 @@ class PathSmoother {
   bool provablyFree(double cx, double cy, double reach) const;
 
   const LatticeGraph& graph_;
-  SmootherOptions options_;
   double radius_ = 0.0;
   double piece_length_ = 0.0;
   double omega_ = 0.0;
