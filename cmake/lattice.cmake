@@ -22,6 +22,8 @@ add_library(amha_lattice
   src/lattice/lattice_planner.cpp
   src/lattice/goal_tolerance.cpp
   src/lattice/start_escape.cpp
+  src/lattice/dubins_path.cpp
+  src/lattice/path_smoother.cpp
 )
 target_include_directories(amha_lattice PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
@@ -41,6 +43,9 @@ target_sources(amha PRIVATE
   src/cli/bench_command.cpp
   src/cli/bench_lattice.cpp
   src/cli/bench_replan.cpp
+  src/cli/bench_queries.cpp
+  src/cli/bench_smooth.cpp
+  src/cli/path_metrics.cpp
 )
 target_link_libraries(amha PRIVATE amha_lattice)
 # The benchmarks stamp their reports with this tree's commit.
@@ -77,6 +82,12 @@ add_test(NAME amha_plan_any_goal_heading
          COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --algorithm astar --time-limit 20); fixed=$(\"$0\" \"\${args[@]}\" | grep -o 'cost=[0-9]*' | tail -1 | cut -d= -f2); free=$(\"$0\" \"\${args[@]}\" --any-goal-heading | grep -o 'cost=[0-9]*' | tail -1 | cut -d= -f2); echo \"fixed $fixed free $free\"; [ -n \"$free\" ] && [ -n \"$fixed\" ] && [ \"$free\" -lt \"$fixed\" ]"
                  $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
+# A costmap read as the server reads it (--lethal-threshold 100) and --smooth, end to end, and
+# the README's example on the bundled costmap.
+add_test(NAME amha_plan_costmap_and_smooth
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_costmap_smooth_test.sh $<TARGET_FILE:amha>
+                 ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-costmap-r025.yaml)
+
 amha_add_gtest(amha_lattice_tests
   SOURCES
     test/lattice/test_support.cpp
@@ -92,6 +103,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/any_goal_heading_test.cpp
     test/lattice/kinematic_table_test.cpp
     test/lattice/start_escape_test.cpp
+    test/lattice/path_smoother_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
@@ -12,16 +13,21 @@ namespace amha {
 namespace cli {
 
 namespace {
-constexpr int kShift = 4;  // sub-pixel bits for OpenCV drawing
-}
 
-void writePlanImage(const std::string& png, const lattice::GridMap& map,
-                    const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
-                    const lattice::Pose2D& start, const lattice::Pose2D& goal) {
-  const int scale = std::max(1, std::min(16, 800 / std::max(map.width, map.height)));
-  cv::Mat img(map.height * scale, map.width * scale, CV_8UC3);
-  for (int y = 0; y < map.height; ++y) {
-    for (int x = 0; x < map.width; ++x) {
+constexpr int kShift = 4;  // sub-pixel bits for OpenCV drawing
+
+// The map cells [x0, x0 + w) x [y0, y0 + h), `scale` pixels per cell, and the map -> pixel
+// mapping (kShift sub-pixel bits).
+struct MapPicture {
+  cv::Mat img;
+  std::function<cv::Point(double, double)> pixel;
+};
+
+MapPicture drawMap(const lattice::GridMap& map, int scale, int x0, int y0, int w, int h) {
+  MapPicture pic;
+  pic.img = cv::Mat(h * scale, w * scale, CV_8UC3);
+  for (int y = y0; y < y0 + h; ++y) {
+    for (int x = x0; x < x0 + w; ++x) {
       const int c = map.at(x, y);
       cv::Vec3b colour;
       if (c == lattice::kUnknownCost) {
@@ -34,16 +40,28 @@ void writePlanImage(const std::string& png, const lattice::GridMap& map,
         const int v = 255 - c * 120 / 252;
         colour = {static_cast<uchar>(v), static_cast<uchar>(v), static_cast<uchar>(v)};
       }
-      img(cv::Rect(x * scale, (map.height - 1 - y) * scale, scale, scale)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
+      pic.img(cv::Rect((x - x0) * scale, (y0 + h - 1 - y) * scale, scale, scale)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
     }
   }
   const double co = std::cos(map.origin_yaw), so = std::sin(map.origin_yaw);
-  auto pixel = [&](double wx, double wy) {
+  pic.pixel = [&map, co, so, scale, x0, y0, h](double wx, double wy) {
     const double dx = wx - map.origin_x, dy = wy - map.origin_y;
-    const double gx = (co * dx + so * dy) / map.resolution, gy = (-so * dx + co * dy) / map.resolution;
+    const double gx = (co * dx + so * dy) / map.resolution - x0, gy = (-so * dx + co * dy) / map.resolution - y0;
     return cv::Point(static_cast<int>(std::lround(gx * scale * (1 << kShift))),
-                     static_cast<int>(std::lround((map.height - gy) * scale * (1 << kShift))));
+                     static_cast<int>(std::lround((h - gy) * scale * (1 << kShift))));
   };
+  return pic;
+}
+
+}  // namespace
+
+void writePlanImage(const std::string& png, const lattice::GridMap& map,
+                    const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
+                    const lattice::Pose2D& start, const lattice::Pose2D& goal) {
+  const int scale = std::max(1, std::min(16, 800 / std::max(map.width, map.height)));
+  MapPicture pic = drawMap(map, scale, 0, 0, map.width, map.height);
+  cv::Mat& img = pic.img;
+  const auto& pixel = pic.pixel;
   const int thick = std::max(1, scale / 3);
   // Footprint along the last path, about every half metre (and at its ends).
   if (!paths.empty() && footprint_at) {
@@ -78,6 +96,38 @@ void writePlanImage(const std::string& png, const lattice::GridMap& map,
   marker(start, cv::Scalar(0, 160, 0));
   marker(goal, cv::Scalar(0, 0, 220));
   lattice::writeImageFile(png, img);  // throws "cannot write <path>..."
+}
+
+void writePathsImage(const std::string& png, const lattice::GridMap& map, const std::vector<ColouredPath>& paths,
+                     double margin, int max_side) {
+  // The cells around the paths.
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  const double co = std::cos(map.origin_yaw), so = std::sin(map.origin_yaw);
+  for (const ColouredPath& p : paths) {
+    for (const lattice::Pose2D& q : p.poses) {
+      const double dx = q.x - map.origin_x, dy = q.y - map.origin_y;
+      const double gx = (co * dx + so * dy) / map.resolution, gy = (-so * dx + co * dy) / map.resolution;
+      x0 = std::min(x0, gx);
+      y0 = std::min(y0, gy);
+      x1 = std::max(x1, gx);
+      y1 = std::max(y1, gy);
+    }
+  }
+  if (x0 > x1) throw std::runtime_error("no path to draw");
+  const double m = margin / map.resolution;
+  const int cx0 = std::max(0, static_cast<int>(std::floor(x0 - m))), cy0 = std::max(0, static_cast<int>(std::floor(y0 - m)));
+  const int cx1 = std::min(map.width, static_cast<int>(std::ceil(x1 + m))), cy1 = std::min(map.height, static_cast<int>(std::ceil(y1 + m)));
+  const int scale = std::max(1, std::min(16, max_side / std::max(cx1 - cx0, cy1 - cy0)));
+  MapPicture pic = drawMap(map, scale, cx0, cy0, cx1 - cx0, cy1 - cy0);
+  for (const ColouredPath& p : paths) {
+    std::vector<cv::Point> line;
+    for (const auto& q : p.poses) line.push_back(pic.pixel(q.x, q.y));
+    if (line.size() >= 2) {
+      cv::polylines(pic.img, std::vector<std::vector<cv::Point>>{line}, false, cv::Scalar(p.bgr[0], p.bgr[1], p.bgr[2]),
+                    std::max(2, scale / 3), cv::LINE_AA, kShift);
+    }
+  }
+  lattice::writeImageFile(png, pic.img);
 }
 
 }  // namespace cli

@@ -16,6 +16,10 @@ void LatticeOptions::addTo(CLI::App& app) {
   app.add_option("--resolution", resolution, "metres per cell of a Moving AI map (default 0.1)");
   app.add_option("--upscale", upscale, "cells per Moving AI map character, per side (default 1)");
   app.add_flag("--unknown-free", unknown_free, "treat unknown cells of map_server maps as free");
+  app.add_option("--lethal-threshold", lethal_threshold,
+                 "map_server maps: occupancy >= this (1..100) is an obstacle, as the server's ~lethal_threshold "
+                 "(default 65, map_server's occupied_thresh); 100 reads a costmap_2d costmap saved in raw mode: "
+                 "100 lethal, 99 inscribed, 1..98 graded costs");
   app.add_option("--mprim", mprim, "SBPL .mprim motion primitives (default: generate them)");
   app.add_option("--turning-radius", turning_radius, "generated primitives: minimum turning radius in m (default 0.5)");
   app.add_option("--headings", headings, "generated primitives: headings, a multiple of 8 (default 16)");
@@ -86,6 +90,19 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   LoadedLattice out;
   lattice::OccupancyConversion conv;
   conv.unknown_is_free = o.unknown_free;
+  if (o.lethal_threshold != LatticeOptions::kNotGiven) {
+    const std::string& m = o.map_file;
+    const bool yaml = (m.size() >= 5 && m.compare(m.size() - 5, 5, ".yaml") == 0) ||
+                      (m.size() >= 4 && m.compare(m.size() - 4, 4, ".yml") == 0);
+    if (o.lethal_threshold < 1 || o.lethal_threshold > 100) {
+      throw std::invalid_argument("--lethal-threshold " + std::to_string(o.lethal_threshold) + " is not in 1..100");
+    }
+    if (!yaml) {
+      throw std::invalid_argument("--lethal-threshold applies to map_server .yaml maps (occupancy values); " + m +
+                                  " has cell costs of its own");
+    }
+    conv.lethal_threshold = o.lethal_threshold;
+  }
   out.map = std::make_shared<lattice::GridMap>(
       lattice::loadMapFile(o.map_file, o.resolution, o.upscale, conv, &out.env));
   const std::string& f = o.map_file;

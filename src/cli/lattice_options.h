@@ -2,6 +2,7 @@
 // its motion model, turned into a GridMap and a LatticeConfig.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +20,8 @@ struct LatticeOptions {
   double resolution = 0.1;  // Moving AI maps
   int upscale = 1;
   bool unknown_free = false;
+  int lethal_threshold = kNotGiven;  // map_server maps: occupancy >= this is lethal (65)
+  static constexpr int kNotGiven = std::numeric_limits<int>::min();
   std::string mprim;
   double turning_radius = 0.0;  // 0: not given
   int headings = 16;

@@ -7,10 +7,12 @@
 #include <CLI/CLI.hpp>
 
 #include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/path_smoother.h"
 #include "command_registry.h"
 #include "exit_codes.h"
 #include "lattice_image.h"
 #include "lattice_options.h"
+#include "path_metrics.h"
 #include "run_json.h"
 #include "schedule_option.h"
 
@@ -67,6 +69,10 @@ int planMain(int argc, char** argv) {
   app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
   app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
   app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
+  bool smooth = false;
+  app.add_flag("--smooth", smooth,
+               "smooth every solution (Dubins shortcuts that keep the lattice's collision test, turning radius and "
+               "cost bound); the smoothed path is the result, --json keeps the lattice path too");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -168,11 +174,27 @@ int planMain(int argc, char** argv) {
   SearchLimits limits;
   limits.time_limit_s = time_limit;
   int count = 0;
-  auto print = [&count](const lattice::LatticeSolution& s) {
+  std::unique_ptr<lattice::PathSmoother> smoother;
+  std::unique_ptr<lattice::SmoothedStream> stream;
+  lattice::LatticeSolution published;  // with --smooth: the smoothed path published last
+  if (smooth) {
+    smoother.reset(new lattice::PathSmoother(planner->graph()));
+    stream.reset(new lattice::SmoothedStream(*smoother));
+    std::printf("smoothing: shortcut turning radius %.3f m\n", smoother->turningRadius());
+  }
+  auto print = [&](const lattice::LatticeSolution& s) {
     const Solution& q = s.search;
     std::printf("solution %d: t=%.4f s  cost=%lld  bound=%.3f  certified=%.3f  expansions=%llu  poses=%zu\n",
                 ++count, s.elapsed_total_s, static_cast<long long>(q.cost), q.nominal_bound,
                 q.certified_bound, static_cast<unsigned long long>(q.expansions), s.poses.size());
+    if (stream) {
+      const lattice::SmoothedStream::Step& step = stream->add(s);
+      std::printf("  smoothed: cost=%lld  certified=%.3f  shortcuts=%zu  %.3f ms%s\n",
+                  static_cast<long long>(step.published.search.cost), step.published.search.certified_bound,
+                  step.smoothed.shortcuts, 1e3 * step.smoothed.seconds,
+                  step.republished ? "  (an earlier smoothed path is cheaper: kept)" : "");
+      published = step.published;
+    }
     std::fflush(stdout);
   };
   lattice::GoalOptions goal_options;
@@ -196,14 +218,32 @@ int planMain(int argc, char** argv) {
               r.search.peak_states, r.search.peak_memory_bytes / 1e6, r.heuristic_seconds,
               r.escape_seconds + r.goal_seconds + r.heuristic_seconds + r.search.elapsed_s);
 
+  // The result: the last solution, or with --smooth the smoothed path published last.
+  std::vector<lattice::Pose2D> result_path;
+  if (!r.solutions.empty()) result_path = stream ? published.poses : r.solutions.back().poses;
+  if (stream && !r.solutions.empty()) {
+    const PathMetrics a = pathMetrics(r.solutions.back().poses), b = pathMetrics(result_path);
+    std::printf("smoothed path: length %.2f m (lattice %.2f m), mean |curvature| %.3f /m (lattice %.3f), max %.3f /m "
+                "(lattice %.3f), |dheading| %.3f rad/m (lattice %.3f), curvature sign changes %d (lattice %d)\n",
+                b.length, a.length, b.mean_curvature, a.mean_curvature, b.max_curvature, a.max_curvature,
+                b.heading_change_per_metre, a.heading_change_per_metre, b.curvature_sign_changes,
+                a.curvature_sign_changes);
+  }
+  auto poses_json = [](const std::vector<lattice::Pose2D>& poses) {
+    nlohmann::json path = nlohmann::json::array();
+    for (const auto& p : poses) path.push_back({p.x, p.y, p.theta});
+    return path;
+  };
   try {
     if (!json_path.empty()) {
       nlohmann::json run = runToJson(lo.map_file, algorithm, r.search, std::nullopt);
-      nlohmann::json path = nlohmann::json::array();
-      if (!r.solutions.empty()) {
-        for (const auto& p : r.solutions.back().poses) path.push_back({p.x, p.y, p.theta});
+      run["path"] = poses_json(result_path);
+      if (stream && !r.solutions.empty()) {
+        run["smoothed"] = true;
+        run["smoothed_cost"] = published.search.cost;
+        run["smoothed_certified_bound"] = published.search.certified_bound;
+        run["lattice_path"] = poses_json(r.solutions.back().poses);
       }
-      run["path"] = path;
       run["heuristic_seconds"] = r.heuristic_seconds;
       nlohmann::json extra = {{"start", {start.x, start.y, start.theta}}, {"goal", {goal.x, goal.y, goal.theta}},
                               {"cost_units_per_metre", lattice::kCostUnitsPerMetre}};
@@ -219,6 +259,7 @@ int planMain(int argc, char** argv) {
     if (!image_path.empty()) {
       std::vector<std::vector<lattice::Pose2D>> paths;
       for (const auto& s : r.solutions) paths.push_back(s.poses);
+      if (stream && !r.solutions.empty()) paths.push_back(result_path);  // drawn last, with the footprint
       writePlanImage(image_path, map, paths, [&](const lattice::Pose2D& p) { return planner->footprintAt(p); }, start, goal);
     }
   } catch (const std::exception& e) {

@@ -2,6 +2,7 @@
 #include "amha_planner/lattice/footprint.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -34,8 +35,7 @@ void rasterizeSegment(CellPoint p, CellPoint q, std::vector<CellOffset>& out) {
   }
 }
 
-void rasterizePolygon(const std::vector<CellPoint>& poly, std::vector<CellOffset>& out) {
-  const std::size_t n = poly.size();
+void rasterizePolygon(const CellPoint* poly, std::size_t n, std::vector<CellOffset>& out) {
   if (n == 0) return;
   double miny = poly[0].y, maxy = poly[0].y;
   for (std::size_t k = 0; k < n; ++k) {
@@ -44,21 +44,28 @@ void rasterizePolygon(const std::vector<CellPoint>& poly, std::vector<CellOffset
     maxy = std::max(maxy, poly[k].y);
   }
   if (n < 3) return;
-  // Interior: cells whose centre is inside (even-odd), row by row.
-  std::vector<double> xs;
+  // Interior: cells whose centre is inside (even-odd), row by row. A row crosses at most n
+  // edges: small polygons (footprints, swept quadrilaterals) need no allocation.
+  std::array<double, 32> small;
+  std::vector<double> large(n > small.size() ? n : 0);
+  double* xs = n > small.size() ? large.data() : small.data();
   for (int j = static_cast<int>(std::floor(miny)); j <= static_cast<int>(std::floor(maxy)); ++j) {
     const double y = j + 0.5;
-    xs.clear();
+    std::size_t count = 0;
     for (std::size_t k = 0; k < n; ++k) {
       const CellPoint a = poly[k], b = poly[(k + 1) % n];
-      if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+      if ((a.y <= y) != (b.y <= y)) xs[count++] = a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y);
     }
-    std::sort(xs.begin(), xs.end());
-    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+    std::sort(xs, xs + count);
+    for (std::size_t k = 0; k + 1 < count; k += 2) {
       const int i0 = static_cast<int>(std::ceil(xs[k] - 0.5)), i1 = static_cast<int>(std::floor(xs[k + 1] - 0.5));
       for (int i = i0; i <= i1; ++i) out.push_back({i, j});
     }
   }
+}
+
+void rasterizePolygon(const std::vector<CellPoint>& poly, std::vector<CellOffset>& out) {
+  rasterizePolygon(poly.data(), poly.size(), out);
 }
 
 void uniqueCells(std::vector<CellOffset>& cells) {
@@ -158,21 +165,51 @@ std::vector<std::array<double, 2>> RobotFootprint::at(const Pose2D& pose) const 
   return out;
 }
 
-namespace {
-
-std::vector<CellPoint> toCells(const RobotFootprint& f, const Pose2D& pose, double res) {
-  std::vector<CellPoint> out;
-  for (const auto& v : f.at(pose)) out.push_back({v[0] / res + 0.5, v[1] / res + 0.5});
-  return out;
+void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res, std::vector<CellPoint>& out) {
+  footprintInCells(f, pose, res, out, std::cos(pose.theta), std::sin(pose.theta));
 }
 
-}  // namespace
+void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res, std::vector<CellPoint>& out, double c,
+                      double s) {
+  out.resize(f.polygon.size());
+  for (std::size_t k = 0; k < f.polygon.size(); ++k) {
+    const auto& v = f.polygon[k];
+    out[k] = {(pose.x + c * v[0] - s * v[1]) / res + 0.5, (pose.y + s * v[0] + c * v[1]) / res + 0.5};
+  }
+}
+
+int sweepSteps(const RobotFootprint& f, const Pose2D& a, const Pose2D& b, double res) {
+  const double dth = std::remainder(b.theta - a.theta, 2.0 * M_PI);
+  const double move = std::hypot(b.x - a.x, b.y - a.y) + f.circumscribed_radius * std::fabs(dth);
+  return std::max(1, static_cast<int>(std::ceil(move / (0.25 * res))));
+}
+
+Pose2D sweepSample(const Pose2D& a, const Pose2D& b, int s, int n) {
+  const double dth = std::remainder(b.theta - a.theta, 2.0 * M_PI);
+  const double t = static_cast<double>(s) / n;
+  return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.theta + t * dth};
+}
+
+void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to, std::size_t e,
+                        std::vector<CellOffset>& out) {
+  // The region an edge sweeps between two placements (exact for a translation).
+  const std::size_t n = from.size();
+  const CellPoint quad[4] = {from[e], from[(e + 1) % n], to[(e + 1) % n], to[e]};
+  rasterizePolygon(quad, 4, out);
+}
+
+void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to,
+                        std::vector<CellOffset>& out) {
+  for (std::size_t e = 0; e < from.size(); ++e) rasterizeEdgeSweep(from, to, e, out);
+}
 
 std::vector<CellOffset> footprintCells(const RobotFootprint& f, const Pose2D& pose, double res) {
   std::vector<CellOffset> cells;
   const CellPoint c{pose.x / res + 0.5, pose.y / res + 0.5};
   rasterizeSegment(c, c, cells);
-  rasterizePolygon(toCells(f, pose, res), cells);
+  std::vector<CellPoint> poly;
+  footprintInCells(f, pose, res, poly);
+  rasterizePolygon(poly, cells);
   uniqueCells(cells);
   return cells;
 }
@@ -187,40 +224,22 @@ PrimitiveCells primitiveCells(const RobotFootprint& f, const std::vector<Pose2D>
   uniqueCells(out.centre);
   if (f.polygon.empty() || poses.empty()) return out;
 
-  // Dense samples: no vertex moves more than a quarter cell between two of them.
-  std::vector<Pose2D> samples{poses.front()};
-  for (std::size_t k = 1; k < poses.size(); ++k) {
-    const Pose2D& a = poses[k - 1];
-    const Pose2D& b = poses[k];
-    const double dth = std::remainder(b.theta - a.theta, 2.0 * M_PI);
-    const double move = std::hypot(b.x - a.x, b.y - a.y) + f.circumscribed_radius * std::fabs(dth);
-    const int steps = std::max(1, static_cast<int>(std::ceil(move / (0.25 * res))));
-    for (int s = 1; s <= steps; ++s) {
-      const double t = static_cast<double>(s) / steps;
-      samples.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.theta + t * dth});
-    }
-  }
   std::vector<CellOffset>& cells = out.swept;
-  std::vector<CellPoint> prev = toCells(f, samples.front(), res);
+  std::vector<CellPoint> prev, cur;
+  footprintInCells(f, poses.front(), res, prev);
   rasterizePolygon(prev, cells);
-  const std::size_t n = prev.size();
-  std::vector<CellPoint> quad(4);
   std::size_t compacted = 0;
-  for (std::size_t k = 1; k < samples.size(); ++k) {
-    const std::vector<CellPoint> cur = toCells(f, samples[k], res);
-    for (std::size_t e = 0; e < n; ++e) {
-      // The region an edge sweeps between two samples (exact for a translation).
-      quad[0] = prev[e];
-      quad[1] = prev[(e + 1) % n];
-      quad[2] = cur[(e + 1) % n];
-      quad[3] = cur[e];
-      rasterizePolygon(quad, cells);
+  for (std::size_t k = 1; k < poses.size(); ++k) {
+    const int steps = sweepSteps(f, poses[k - 1], poses[k], res);
+    for (int s = 1; s <= steps; ++s) {
+      footprintInCells(f, sweepSample(poses[k - 1], poses[k], s, steps), res, cur);
+      rasterizeEdgeSweep(prev, cur, cells);
+      if (cells.size() > 2 * compacted + 4096) {
+        uniqueCells(cells);
+        compacted = cells.size();
+      }
+      std::swap(prev, cur);
     }
-    if (cells.size() > 2 * compacted + 4096) {
-      uniqueCells(cells);
-      compacted = cells.size();
-    }
-    prev = cur;
   }
   uniqueCells(cells);
   return out;

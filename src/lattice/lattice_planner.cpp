@@ -537,6 +537,8 @@ PlannerConfig defaultPlannerConfig(Algorithm algorithm) {
   return c;
 }
 
+const LatticeGraph& LatticePlanner::graph() const { return *impl_->graph; }
+
 const char* heuristicSourceName(HeuristicSource s) {
   switch (s) {
     case HeuristicSource::kCached: return "cached";

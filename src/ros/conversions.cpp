@@ -176,6 +176,16 @@ PlanSolution planSolutionMsg(const lat::LatticeSolution& solution, std::uint32_t
   m.elapsed = solution.elapsed_total_s;  // heuristic grids for a new goal included
   m.expansions = solution.search.expansions;
   m.iteration = solution.search.iteration;
+  m.lattice_cost = m.cost;
+  return m;
+}
+
+PlanSolution smoothedSolutionMsg(const lat::LatticeSolution& published, const lat::LatticeSolution& lattice,
+                                 std::uint32_t request_id, const std::string& frame, const ros::Time& stamp) {
+  PlanSolution m = planSolutionMsg(published, request_id, frame, stamp);
+  m.smoothed = true;
+  m.lattice_path = pathFromPoses(lattice.poses, frame, stamp);
+  m.lattice_cost = costInMetres(lattice.search.cost);
   return m;
 }
 

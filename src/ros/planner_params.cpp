@@ -207,6 +207,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
   p.start_tolerance = getDouble(pnh, "start_tolerance", p.start_tolerance, 0.0, 1e3);
   p.start_escape_penalty = getDouble(pnh, "start_escape_penalty", p.start_escape_penalty, 1.0, 1e3);
+  p.smooth_path = getBool(pnh, "smooth_path", p.smooth_path);
   // Frames and server.
   p.global_frame = normaliseFrame(getString(pnh, "global_frame", p.global_frame));
   p.robot_base_frame = normaliseFrame(getString(pnh, "robot_base_frame", p.robot_base_frame));

@@ -12,6 +12,7 @@
 #include <tf2_geometry_msgs/tf2_geometry_msgs.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "amha_planner/lattice/path_smoother.h"
 #include "amha_planner/ros/conversions.h"
 #include "amha_planner/ros/reconfigure.h"
 
@@ -565,24 +566,51 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     start_options.tolerance = r.start_tolerance > 0.0 ? r.start_tolerance : params->start_tolerance;
     start_options.penalty = params->start_escape_penalty;
 
-    // Each improvement is published as it is found (~solutions, ~plan, ~footprints).
-    std::vector<amha::StateId> previous_ids;  // state ids identify a path exactly
+    // Each improvement is published as it is found (~solutions, ~plan, ~footprints), smoothed
+    // with ~smooth_path.
+    std::unique_ptr<lat::PathSmoother> smoother;
+    std::unique_ptr<lat::SmoothedStream> stream;
+    if (params->smooth_path) {
+      smoother = std::make_unique<lat::PathSmoother>(planner->graph());
+      stream = std::make_unique<lat::SmoothedStream>(*smoother);
+    }
+    std::vector<amha::StateId> previous_ids;  // state ids identify a lattice path exactly
+    std::vector<lat::Pose2D> best_poses;      // of the path published last
     const auto on_solution = [&](const lat::LatticeSolution& solution) {
-      PlanSolution m = planSolutionMsg(solution, id, frame, stamp);
-      m.same_path_as_previous = !res.solutions.empty() && previous_ids == solution.search.path;
+      const bool same_lattice_path = !res.solutions.empty() && previous_ids == solution.search.path;
       previous_ids = solution.search.path;
+      PlanSolution m;
+      const lat::LatticeSolution* shown = &solution;
+      bool smoothed = false;
+      if (stream) {
+        try {
+          const lat::SmoothedStream::Step& step = stream->add(solution);
+          m = smoothedSolutionMsg(step.published, solution, id, frame, stamp);
+          m.same_path_as_previous = !res.solutions.empty() && step.same_as_previous;
+          shown = &step.published;
+          smoothed = true;
+        } catch (const std::exception& e) {
+          ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id, e.what());
+        }
+      }
+      if (!smoothed) {
+        m = planSolutionMsg(solution, id, frame, stamp);
+        m.same_path_as_previous = same_lattice_path;
+      }
+      best_poses = shown->poses;
       solutions_pub_.publish(m);
       if (!m.same_path_as_previous) {
         path_pub_.publish(m.path);
         // With a goal tolerance or any goal heading the path may end elsewhere than at the
         // goal pose: mark where it really ends.
         const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
-        const lat::Pose2D& goal_mark = free_end ? solution.poses.back() : g;
-        markers_pub_.publish(footprintMarkers(*planner, solution.poses, s, goal_mark, frame, stamp,
+        const lat::Pose2D& goal_mark = free_end ? shown->poses.back() : g;
+        markers_pub_.publish(footprintMarkers(*planner, shown->poses, s, goal_mark, frame, stamp,
                                               params->marker_spacing));
       }
       if (sink) sink(m);
       if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
+      if (same_lattice_path) m.lattice_path.poses.clear();
       res.solutions.push_back(std::move(m));
     };
     const lat::PlanResult result = planner->plan(s, g, start_options, goal_options, config, limits, on_solution);
@@ -613,14 +641,15 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     const auto status = result.search.status;
     if (!res.solutions.empty()) {
       const PlanSolution& best = res.solutions.back();
-      res.path = pathFromPoses(result.solutions.back().poses, frame, stamp);
+      res.path = pathFromPoses(best_poses, frame, stamp);
       res.cost = best.cost;
       res.bound = best.bound;
       res.certified_bound = best.certified_bound;
       const std::string summary = std::to_string(res.solutions.size()) +
                                   " solution(s), best cost " + fmt(best.cost) + " m, bound " +
                                   fmt(best.bound, 2) + ", certified " +
-                                  fmt(best.certified_bound, 2);
+                                  fmt(best.certified_bound, 2) +
+                                  (best.smoothed ? " (smoothed; lattice path " + fmt(best.lattice_cost) + " m)" : "");
       res.status = Status::SUCCESS;
       switch (status) {
         case amha::SearchStatus::kProvenOptimal:

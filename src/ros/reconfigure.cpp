@@ -86,6 +86,7 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   c.unknown_is_free = p.occupancy.unknown_is_free;
   c.cost_penalty = l.cost_penalty;
   c.marker_spacing = p.marker_spacing;
+  c.smooth_path = p.smooth_path;
   return c;
 }
 
@@ -161,6 +162,7 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   p.start_escape_penalty = c.start_escape_penalty;
   p.tf_timeout = c.tf_timeout;
   p.marker_spacing = c.marker_spacing;
+  p.smooth_path = c.smooth_path;
   p.occupancy.lethal_threshold = c.lethal_threshold;
   p.occupancy.unknown_is_free = c.unknown_is_free;
   l.num_inadmissible = c.num_inadmissible;

@@ -218,12 +218,24 @@ TEST(Conversions, CostsAreReportedInMetres) {
 }
 
 TEST(SearchConfigFor, AppliesParametersThenRequestOverrides) {
-  PlannerParams p;  // defaults: amha with its preset
+  PlannerParams p;  // defaults: amha with the lattice's preset
   amha::PlannerConfig c;
   std::string error;
   ASSERT_TRUE(searchConfigFor(p, "", 0, 0, &c, &error)) << error;
   EXPECT_EQ(c.algorithm, amha::Algorithm::kAmhaStar);
-  EXPECT_DOUBLE_EQ(c.w1, 5.0);
+  EXPECT_DOUBLE_EQ(c.w1, amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).w1);
+  EXPECT_EQ(c.weight_schedule, amha::WeightSchedule::kCertified);
+  EXPECT_TRUE(c.publish_within_iterations);
+  p.weight_schedule = amha::WeightSchedule::kDecrement;
+  p.publish_within_iterations = false;
+  ASSERT_TRUE(searchConfigFor(p, "", 0, 0, &c, &error)) << error;
+  EXPECT_EQ(c.weight_schedule, amha::WeightSchedule::kDecrement);
+  EXPECT_FALSE(c.publish_within_iterations);
+  p.certified_ratio = 1.5;  // out of range: refused by the planner's own check
+  p.weight_schedule = amha::WeightSchedule::kCertified;
+  EXPECT_FALSE(searchConfigFor(p, "", 0, 0, &c, &error));
+  EXPECT_NE(error.find("certified_ratio"), std::string::npos) << error;
+  p.certified_ratio = 0.0;
   p.w1 = 3.0;
   p.dw2 = 0.25;
   ASSERT_TRUE(searchConfigFor(p, "", 0, 2.0, &c, &error)) << error;

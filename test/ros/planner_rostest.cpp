@@ -179,7 +179,11 @@ TEST(PlannerNodelet, PlanSucceedsWithAValidPathAndStreamsItsSolutions) {
   EXPECT_DOUBLE_EQ(res.cost, best.cost);
   EXPECT_DOUBLE_EQ(res.bound, best.bound);
   EXPECT_DOUBLE_EQ(res.certified_bound, best.certified_bound);
-  EXPECT_EQ(res.path.poses.size(), best.path.poses.size());
+  // The best path is the last one sent in full (a solution that repeats it leaves it out).
+  auto sent = res.solutions.rbegin();
+  while (sent != res.solutions.rend() && sent->same_path_as_previous) ++sent;
+  ASSERT_NE(sent, res.solutions.rend());
+  EXPECT_EQ(res.path.poses.size(), sent->path.poses.size());
   // The straight-line distance is a lower bound on the cost (metres-equivalent).
   EXPECT_GE(res.cost + 1e-6, std::hypot(9.0, 4.0));
   expectSolutionPaths(res.solutions, kRoomStart, kRoomGoal);
@@ -221,6 +225,40 @@ TEST(PlannerNodelet, EveryAlgorithmGivesValidMonotoneSolutions) {
     expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
     expectMonotone(res.solutions);
   }
+}
+
+TEST(PlannerNodelet, PublishesSmoothedPathsAndKeepsTheLatticePaths) {
+  // ~smooth_path is on by default: every solution's path is smoothed, no costlier than its
+  // lattice path, which comes along; both are valid paths from the start to the goal.
+  const auto res = plan(kMazeStart, kMazeGoal, 5.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  ASSERT_FALSE(res.solutions.empty());
+  expectMonotone(res.solutions);
+  int differ = 0;
+  const PlanSolution* previous = nullptr;
+  for (const auto& s : res.solutions) {
+    EXPECT_TRUE(s.smoothed);
+    EXPECT_LE(s.cost, s.lattice_cost + 1e-9);
+    // The lattice path is left out only where it repeats the previous one.
+    if (!s.lattice_path.poses.empty()) {
+      expectValidPath(s.lattice_path, kMazeStart, kMazeGoal, testMap());
+      if (!s.path.poses.empty()) {
+        const auto& a = s.path.poses;
+        const auto& b = s.lattice_path.poses;
+        EXPECT_EQ(a.front().pose.position.x, b.front().pose.position.x);
+        EXPECT_EQ(a.front().pose.position.y, b.front().pose.position.y);
+        EXPECT_EQ(a.back().pose.position.x, b.back().pose.position.x);
+        EXPECT_EQ(a.back().pose.position.y, b.back().pose.position.y);
+        differ += s.cost < s.lattice_cost - 1e-9;
+      }
+    } else {
+      ASSERT_NE(previous, nullptr);
+    }
+    previous = &s;
+  }
+  EXPECT_GT(differ, 0) << "the maze's lattice paths should be shortened";
+  EXPECT_NE(res.message.find("smoothed"), std::string::npos) << res.message;
+  expectValidPath(res.path, kMazeStart, kMazeGoal, testMap());
 }
 
 TEST(PlannerNodelet, ActionSendsOneFeedbackPerSolution) {
@@ -552,7 +590,8 @@ TEST(PlannerNodelet, IgnoreGoalHeadingEndsWithTheCheapestHeading) {
   ASSERT_TRUE(ros::service::call("/planner/plan", srv));
   const auto& res = srv.response;
   ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
-  EXPECT_LT(res.cost, fixed.cost);
+  // A*'s lattice optima (the published paths are smoothed, each from its own).
+  EXPECT_LT(res.solutions.back().lattice_cost, fixed.solutions.back().lattice_cost);
   EXPECT_FALSE(res.goal_substituted);
   EXPECT_EQ(res.planned_goal.header.frame_id, "map");
   EXPECT_LE(angleDiff(yawOf(res.planned_goal.pose), 0.0), kHeadingBin / 2) << "it arrives facing ahead";

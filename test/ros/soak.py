@@ -544,6 +544,20 @@ class Soak:
                                     any_heading, len(s.path.poses) if res.start_escaped else 0)
                 if e:
                     self.fail("%s: solution %d invalid: %s" % (where, k, " | ".join(e)))
+            # Smoothed (~smooth_path, the default): never costlier than its lattice path, which
+            # comes along (left out only where it repeats the previous one) and is valid too.
+            if s.smoothed:
+                if s.cost > s.lattice_cost + 1e-9:
+                    self.fail("%s: solution %d: smoothed cost %g above its lattice path's %g" % (where, k, s.cost, s.lattice_cost))
+                if s.lattice_path.poses:
+                    e = self.check_path(where, s.lattice_path, start_map, goal_map, grids,
+                                        tolerance if res.goal_substituted else 0.0, any_heading)
+                    if e:
+                        self.fail("%s: solution %d lattice path invalid: %s" % (where, k, " | ".join(e)))
+                elif k == 0:
+                    self.fail("%s: solution 0 smoothed without its lattice path" % where)
+                with self.lock:
+                    self.stats["smoothed_checked"] = self.stats.get("smoothed_checked", 0) + 1
             prev = s
         with self.lock:
             self.stats["solutions_checked"] += len(sols)

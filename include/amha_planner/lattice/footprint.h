@@ -31,6 +31,7 @@ void rasterizeSegment(CellPoint p, CellPoint q, std::vector<CellOffset>& out);
 /// Appends the cells meeting the closed polygon (boundary via rasterizeSegment, interior via the
 /// cells whose centre is inside, even-odd rule).
 void rasterizePolygon(const std::vector<CellPoint>& polygon, std::vector<CellOffset>& out);
+void rasterizePolygon(const CellPoint* polygon, std::size_t size, std::vector<CellOffset>& out);
 /// Sorts and removes duplicates.
 void uniqueCells(std::vector<CellOffset>& cells);
 
@@ -63,6 +64,32 @@ struct PrimitiveCells {
 /// `poses` are relative to the start cell's centre (metres, absolute headings).
 PrimitiveCells primitiveCells(const RobotFootprint& footprint, const std::vector<Pose2D>& poses,
                               double resolution);
+
+// The steps of primitiveCells' sweep, for checking other motions (a smoothed path's) by the
+// same test: between consecutive poses a and b the footprint is placed at sweepSample(a, b, s,
+// n) for s = 1..n, n = sweepSteps(a, b), and each edge's quadrilateral between two consecutive
+// placements is rasterised (rasterizeEdgeSweep).
+
+/// Into how many steps the motion a -> b is cut: no footprint vertex moves more than a quarter
+/// cell in one (positions linear, heading along the shorter arc).
+int sweepSteps(const RobotFootprint& footprint, const Pose2D& a, const Pose2D& b, double resolution);
+/// The pose after step s of n from a to b (s = n is b, up to rounding).
+Pose2D sweepSample(const Pose2D& a, const Pose2D& b, int s, int n);
+/// The footprint at `pose` (metres, relative to a cell's centre) in cell units of that cell
+/// (which is the square [0, 1] x [0, 1]); `out` is overwritten.
+void footprintInCells(const RobotFootprint& footprint, const Pose2D& pose, double resolution,
+                      std::vector<CellPoint>& out);
+/// The same with cos(pose.theta) and sin(pose.theta) given (placements at one heading).
+void footprintInCells(const RobotFootprint& footprint, const Pose2D& pose, double resolution,
+                      std::vector<CellPoint>& out, double cos_theta, double sin_theta);
+/// Appends the cells the edges of the footprint sweep from placement `from` to `to` (both from
+/// footprintInCells): for each edge, the quadrilateral between its two positions (exact for a
+/// translation).
+void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to,
+                        std::vector<CellOffset>& out);
+/// The same for edge `edge` (from vertex edge to edge + 1) alone.
+void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to, std::size_t edge,
+                        std::vector<CellOffset>& out);
 
 /// Cells under the footprint at a pose relative to a cell centre (the centre cell included).
 std::vector<CellOffset> footprintCells(const RobotFootprint& footprint, const Pose2D& pose,

@@ -130,6 +130,10 @@ class LatticeGraph {
   /// asks only "clearance > sweep radius", which a byte answers as well as the distance (a
   /// quarter of a float's memory, and of what an incremental build copies).
   const std::vector<std::uint8_t>& clearance() const { return clearance_; }
+  /// The distinct sweep radii (cells, ascending) that bound the classes: a cell's class exceeds
+  /// k exactly when its clearance exceeds clearanceRadii()[k] (e.g. for PathSmoother, which
+  /// skips the footprint test where the clearance proves it free, as edgeCost does).
+  const std::vector<float>& clearanceRadii() const { return class_radii_; }
   /// Distances at or beyond this (cells) are all in the top class: a change farther away
   /// cannot alter a cell's class.
   float clearanceCap() const { return clearance_cap_; }

@@ -92,6 +92,8 @@ struct CellRect {
   }
 };
 
+class LatticeGraph;
+
 /// The robot and its motion model.
 struct LatticeConfig {
   std::string mprim_file;        ///< SBPL .mprim file; empty: generate primitives from below
@@ -334,6 +336,10 @@ class LatticePlanner {
 
   /// The footprint polygon placed at a pose (map frame), for drawing and markers.
   std::vector<std::array<double, 2>> footprintAt(const Pose2D& pose) const;
+
+  /// The lattice it plans on: its map, primitives, footprint sweeps and edge costs (e.g. for
+  /// PathSmoother, path_smoother.h). Lives as long as the planner (added after the API freeze).
+  const LatticeGraph& graph() const;
 
  private:
   struct Impl;

@@ -66,6 +66,12 @@ PlanSolution planSolutionMsg(const amha::lattice::LatticeSolution& solution,
                              std::uint32_t request_id, const std::string& frame,
                              const ros::Time& stamp);
 
+/// The message for one smoothed solution: `published` (SmoothedStream::Step::published) as path,
+/// cost and bounds, `lattice` (the search's solution) as lattice_path and lattice_cost.
+PlanSolution smoothedSolutionMsg(const amha::lattice::LatticeSolution& published,
+                                 const amha::lattice::LatticeSolution& lattice, std::uint32_t request_id,
+                                 const std::string& frame, const ros::Time& stamp);
+
 /// Search cost units -> metres-equivalent.
 inline double costInMetres(amha::Cost cost) {
   return static_cast<double>(cost) / amha::lattice::kCostUnitsPerMetre;

@@ -34,6 +34,8 @@ struct PlannerParams {
   bool publish_within_iterations = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).publish_within_iterations;
 
   double default_time_budget = 5.0;   ///< seconds, when a request gives 0
+  /// Publish smoothed paths (PathSmoother): PlanSolution::path smoothed, lattice_path the raw.
+  bool smooth_path = true;
   /// Every request's goal heading is free (as if each set ignore_goal_heading; also
   /// ~make_plan's, whose GetPlan cannot say it).
   bool ignore_goal_heading = false;
