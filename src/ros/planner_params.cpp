@@ -202,6 +202,8 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.certified_split = getDouble(pnh, "certified_split", p.certified_split, 0.0, 1.0);
   p.final_gap = getDouble(pnh, "final_gap", p.final_gap, 0.0, 1e3);
   p.publish_within_iterations = getBool(pnh, "publish_within_iterations", p.publish_within_iterations);
+  p.stall_expansions = getInt(pnh, "stall_expansions", p.stall_expansions, 0, 1 << 30);
+  p.stall_w1 = getDouble(pnh, "stall_w1", p.stall_w1, 1.0, 1e6);
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
@@ -245,6 +247,8 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
     c.certified_split = params.certified_split;
     c.final_gap = params.final_gap;
     c.publish_within_iterations = params.publish_within_iterations;
+    c.stall_expansions = static_cast<std::uint64_t>(params.stall_expansions);
+    c.stall_w1 = params.stall_w1;
   }
   switch (algorithm) {
     case amha::Algorithm::kAmhaStar:

@@ -55,6 +55,8 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   c.certified_split = p.certified_split;
   c.final_gap = p.final_gap;
   c.publish_within_iterations = p.publish_within_iterations;
+  c.stall_expansions = p.stall_expansions;
+  c.stall_w1 = p.stall_w1;
   c.kinematic_radius = l.kinematic_radius;
   c.anchor_connectivity = l.anchor_connectivity;
   c.inadmissible_heuristics = l.inadmissible == lat::LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
@@ -103,7 +105,7 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
       {"start_tolerance", c.start_tolerance}, {"start_escape_penalty", c.start_escape_penalty},
       {"tf_timeout", c.tf_timeout}, {"robot_radius", c.robot_radius}, {"turning_radius", c.turning_radius},
       {"certified_ratio", c.certified_ratio}, {"certified_split", c.certified_split}, {"final_gap", c.final_gap},
-      {"kinematic_radius", c.kinematic_radius},
+      {"kinematic_radius", c.kinematic_radius}, {"stall_w1", c.stall_w1},
       {"nominal_speed", c.nominal_speed}, {"time_to_turn_45", c.time_to_turn_45},
       {"cost_penalty", c.cost_penalty}, {"marker_spacing", c.marker_spacing}};
   for (const auto& [name, v] : numbers) {
@@ -151,6 +153,8 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   p.certified_split = c.certified_split;
   p.final_gap = c.final_gap;
   p.publish_within_iterations = c.publish_within_iterations;
+  p.stall_expansions = c.stall_expansions;
+  p.stall_w1 = c.stall_w1;
   l.kinematic_radius = c.kinematic_radius;
   l.anchor_connectivity = c.anchor_connectivity;
   l.inadmissible = c.inadmissible_heuristics == "paper" ? lat::LatticeConfig::Inadmissible::kPaper

@@ -32,6 +32,8 @@ struct PlannerParams {
   double certified_split = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_split;
   double final_gap = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).final_gap;
   bool publish_within_iterations = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).publish_within_iterations;
+  int stall_expansions = static_cast<int>(amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_expansions);
+  double stall_w1 = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_w1;
 
   double default_time_budget = 5.0;   ///< seconds, when a request gives 0
   /// Publish smoothed paths (PathSmoother): PlanSolution::path smoothed, lattice_path the raw.
