@@ -18,6 +18,9 @@ std::string tempDir();
 /// cell costs in 0..cost_max elsewhere; a border of free cells is left around (x0, y0) spots.
 std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
                                    int obstacles, int cost_max);
+/// The start cell's 8-connected component of cells below kInscribedCost (1 = in it), by a
+/// plain flood fill; all 0 if the start cell itself is not below it.
+std::vector<char> floodFill(const GridMap& m, int sx, int sy);
 /// A small rectangular footprint (half length, half width in metres).
 std::vector<std::array<double, 2>> rectangle(double half_length, double half_width);
 
