@@ -13,15 +13,12 @@ namespace cli {
 
 namespace {
 constexpr int kShift = 4;  // sub-pixel bits for OpenCV drawing
-}
 
-void writePlanImage(const std::string& png, const lattice::GridMap& map,
-                    const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
-                    const lattice::Pose2D& start, const lattice::Pose2D& goal) {
-  const int scale = std::max(1, std::min(16, 800 / std::max(map.width, map.height)));
-  cv::Mat img(map.height * scale, map.width * scale, CV_8UC3);
-  for (int y = 0; y < map.height; ++y) {
-    for (int x = 0; x < map.width; ++x) {
+// The cells of `crop` (cells; row 0 at the bottom of the map) as pixels, `scale` per cell.
+cv::Mat mapPixels(const lattice::GridMap& map, const cv::Rect& crop, int scale) {
+  cv::Mat img(crop.height * scale, crop.width * scale, CV_8UC3);
+  for (int y = crop.y; y < crop.y + crop.height; ++y) {
+    for (int x = crop.x; x < crop.x + crop.width; ++x) {
       const int c = map.at(x, y);
       cv::Vec3b colour;
       if (c == lattice::kUnknownCost) {
@@ -34,16 +31,43 @@ void writePlanImage(const std::string& png, const lattice::GridMap& map,
         const int v = 255 - c * 120 / 252;
         colour = {static_cast<uchar>(v), static_cast<uchar>(v), static_cast<uchar>(v)};
       }
-      img(cv::Rect(x * scale, (map.height - 1 - y) * scale, scale, scale)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
+      const int row = crop.y + crop.height - 1 - y;
+      img(cv::Rect((x - crop.x) * scale, row * scale, scale, scale)).setTo(cv::Scalar(colour[0], colour[1], colour[2]));
     }
   }
-  const double co = std::cos(map.origin_yaw), so = std::sin(map.origin_yaw);
-  auto pixel = [&](double wx, double wy) {
+  return img;
+}
+
+// Map-frame point -> sub-pixel position in an image of `crop`.
+struct PixelOf {
+  const lattice::GridMap& map;
+  cv::Rect crop;
+  int scale;
+  cv::Point operator()(double wx, double wy) const {
+    const double co = std::cos(map.origin_yaw), so = std::sin(map.origin_yaw);
     const double dx = wx - map.origin_x, dy = wy - map.origin_y;
-    const double gx = (co * dx + so * dy) / map.resolution, gy = (-so * dx + co * dy) / map.resolution;
+    const double gx = (co * dx + so * dy) / map.resolution - crop.x, gy = (-so * dx + co * dy) / map.resolution - crop.y;
     return cv::Point(static_cast<int>(std::lround(gx * scale * (1 << kShift))),
-                     static_cast<int>(std::lround((map.height - gy) * scale * (1 << kShift))));
-  };
+                     static_cast<int>(std::lround((crop.height - gy) * scale * (1 << kShift))));
+  }
+};
+
+void drawMarker(cv::Mat& img, const PixelOf& pixel, const lattice::Pose2D& p, int scale, const cv::Scalar& colour) {
+  const cv::Point c = pixel(p.x, p.y);
+  const int r = std::max(3, 2 * scale) << kShift;
+  cv::circle(img, c, r, colour, 2, cv::LINE_AA, kShift);
+  const cv::Point tip(c.x + static_cast<int>(r * 2 * std::cos(p.theta)), c.y - static_cast<int>(r * 2 * std::sin(p.theta)));
+  cv::line(img, c, tip, colour, 2, cv::LINE_AA, kShift);
+}
+
+}  // namespace
+
+void writePlanImage(const std::string& png, const lattice::GridMap& map,
+                    const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
+                    const lattice::Pose2D& start, const lattice::Pose2D& goal) {
+  const int scale = std::max(1, std::min(16, 800 / std::max(map.width, map.height)));
+  cv::Mat img = mapPixels(map, cv::Rect(0, 0, map.width, map.height), scale);
+  const PixelOf pixel{map, cv::Rect(0, 0, map.width, map.height), scale};
   const int thick = std::max(1, scale / 3);
   // Footprint along the last path, about every half metre (and at its ends).
   if (!paths.empty() && footprint_at) {
@@ -68,16 +92,45 @@ void writePlanImage(const std::string& png, const lattice::GridMap& map,
       cv::polylines(img, std::vector<std::vector<cv::Point>>{line}, false, colour, k + 1 == paths.size() ? thick + 1 : thick, cv::LINE_AA, kShift);
     }
   }
-  auto marker = [&](const lattice::Pose2D& p, const cv::Scalar& colour) {
-    const cv::Point c = pixel(p.x, p.y);
-    const int r = std::max(3, 2 * scale) << kShift;
-    cv::circle(img, c, r, colour, 2, cv::LINE_AA, kShift);
-    const cv::Point tip(c.x + static_cast<int>(r * 2 * std::cos(p.theta)), c.y - static_cast<int>(r * 2 * std::sin(p.theta)));
-    cv::line(img, c, tip, colour, 2, cv::LINE_AA, kShift);
-  };
-  marker(start, cv::Scalar(0, 160, 0));
-  marker(goal, cv::Scalar(0, 0, 220));
+  drawMarker(img, pixel, start, scale, cv::Scalar(0, 160, 0));
+  drawMarker(img, pixel, goal, scale, cv::Scalar(0, 0, 220));
   lattice::writeImageFile(png, img);  // throws "cannot write <path>..."
+}
+
+void writePathsImage(const std::string& png, const lattice::GridMap& map, const std::vector<LabelledPath>& paths,
+                     const lattice::Pose2D& start, const lattice::Pose2D& goal, double margin_m) {
+  // The cells around the paths (and the start and goal), in grid coordinates.
+  const double co = std::cos(map.origin_yaw), so = std::sin(map.origin_yaw);
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  auto include = [&](const lattice::Pose2D& p) {
+    const double dx = p.x - map.origin_x, dy = p.y - map.origin_y;
+    const double gx = (co * dx + so * dy) / map.resolution, gy = (-so * dx + co * dy) / map.resolution;
+    x0 = std::min(x0, gx), y0 = std::min(y0, gy), x1 = std::max(x1, gx), y1 = std::max(y1, gy);
+  };
+  include(start);
+  include(goal);
+  for (const LabelledPath& p : paths)
+    for (const auto& q : p.poses) include(q);
+  const double m = margin_m / map.resolution;
+  const int cx0 = std::max(0, static_cast<int>(x0 - m)), cy0 = std::max(0, static_cast<int>(y0 - m));
+  const int cx1 = std::min(map.width, static_cast<int>(x1 + m) + 1), cy1 = std::min(map.height, static_cast<int>(y1 + m) + 1);
+  const cv::Rect crop(cx0, cy0, std::max(1, cx1 - cx0), std::max(1, cy1 - cy0));
+  const int scale = std::max(1, std::min(16, 900 / std::max(crop.width, crop.height)));
+  cv::Mat img = mapPixels(map, crop, scale);
+  const PixelOf pixel{map, crop, scale};
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    const cv::Scalar colour(paths[k].bgr[0], paths[k].bgr[1], paths[k].bgr[2]);
+    std::vector<cv::Point> line;
+    for (const auto& p : paths[k].poses) line.push_back(pixel(p.x, p.y));
+    if (line.size() >= 2) cv::polylines(img, std::vector<std::vector<cv::Point>>{line}, false, colour, 2, cv::LINE_AA, kShift);
+    const cv::Point at(10, 24 + 22 * static_cast<int>(k));
+    cv::rectangle(img, at + cv::Point(-4, -16), at + cv::Point(12 + 9 * static_cast<int>(paths[k].label.size()), 6),
+                  cv::Scalar(255, 255, 255), cv::FILLED);
+    cv::putText(img, paths[k].label, at, cv::FONT_HERSHEY_SIMPLEX, 0.5, colour, 1, cv::LINE_AA);
+  }
+  drawMarker(img, pixel, start, scale, cv::Scalar(0, 160, 0));
+  drawMarker(img, pixel, goal, scale, cv::Scalar(0, 0, 220));
+  lattice::writeImageFile(png, img);
 }
 
 }  // namespace cli
