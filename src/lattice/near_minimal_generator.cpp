@@ -210,7 +210,7 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
   };
 
   CompositionTable table(n, m + 1, table_radius);
-  std::vector<Candidate> kept;
+  std::vector<std::pair<Candidate, Symmetry>> kept;  // every image of the kept candidates, once
   std::set<std::tuple<int, int, int, int>> images;  // (start, dx, dy, end) of the whole set
   const int quiet_rings = std::max(5, static_cast<int>(std::ceil(0.5 * rmin / res)));
   const int first_ring_that_counts = static_cast<int>(std::ceil(M_PI / 2.0 * rmin / res));
@@ -238,19 +238,18 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
         const Vec d = g.apply(c.cell);
         if (images.insert({s, d.x, d.y, e}).second) {
           edges.push_back({s, Edge{d.x, d.y, e, static_cast<float>(c.length)}});
+          kept.push_back({c, g});
         }
       }
       table.add(edges);
-      kept.push_back(c);
       added = true;
     }
     quiet = added || ring < first_ring_that_counts ? 0 : quiet + 1;
   }
 
-  // Every kept candidate under every symmetry, once, with exact end poses.
+  // The kept candidates' images, with exact end poses.
   std::vector<MotionPrimitive> all;
-  std::set<std::tuple<int, int, int, int>> done;
-  for (const Candidate& c : kept) {
+  for (const auto& [c, g] : kept) {
     Shape shape;
     if (c.end == c.start) {
       shape.pieces = {{c.length, 0.0}};
@@ -265,16 +264,10 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
     base.turning_radius = shape.radius;
     for (const Piece& p : shape.pieces) (p.curvature != 0.0 ? base.arc_length : base.straight_length) += p.length;
     base.poses = detail::samplePath(set.heading_angles[c.start], shape.pieces, 0.5 * res, 0.0);
-    for (const Symmetry& g : group) {
-      const int s = headingOf(g.apply(dirs[c.start]));
-      const Vec d = g.apply(c.cell);
-      const int e = headingOf(g.apply(dirs[c.end]));
-      if (done.insert({s, d.x, d.y, e}).second) all.push_back(detail::transformed(base, g, s, dirs, set));
-    }
+    all.push_back(detail::transformed(base, g, headingOf(g.apply(dirs[c.start])), dirs, set));
   }
-  const bool turns = o.turn_in_place && o.motion_model != MotionModel::kAckermann;
-  for (int h = 0; h < n; ++h) {
-    if (turns) {
+  if (o.turn_in_place && o.motion_model != MotionModel::kAckermann) {
+    for (int h = 0; h < n; ++h) {
       for (int side : {+1, -1}) all.push_back(detail::turnOnTheSpot(set, h, side, o.turn_in_place_multiplier));
     }
   }
