@@ -118,18 +118,26 @@ void writePathsImage(const std::string& png, const lattice::GridMap& map, const 
   const int scale = std::max(1, std::min(16, 900 / std::max(crop.width, crop.height)));
   cv::Mat img = mapPixels(map, crop, scale);
   const PixelOf pixel{map, crop, scale};
+  // Earlier paths wider, so that later ones drawn over them leave them visible.
   for (std::size_t k = 0; k < paths.size(); ++k) {
     const cv::Scalar colour(paths[k].bgr[0], paths[k].bgr[1], paths[k].bgr[2]);
     std::vector<cv::Point> line;
     for (const auto& p : paths[k].poses) line.push_back(pixel(p.x, p.y));
-    if (line.size() >= 2) cv::polylines(img, std::vector<std::vector<cv::Point>>{line}, false, colour, 2, cv::LINE_AA, kShift);
-    const cv::Point at(10, 24 + 22 * static_cast<int>(k));
-    cv::rectangle(img, at + cv::Point(-4, -16), at + cv::Point(12 + 9 * static_cast<int>(paths[k].label.size()), 6),
-                  cv::Scalar(255, 255, 255), cv::FILLED);
-    cv::putText(img, paths[k].label, at, cv::FONT_HERSHEY_SIMPLEX, 0.5, colour, 1, cv::LINE_AA);
+    const int width = 2 + 2 * static_cast<int>(paths.size() - 1 - k);
+    if (line.size() >= 2) cv::polylines(img, std::vector<std::vector<cv::Point>>{line}, false, colour, width, cv::LINE_AA, kShift);
   }
   drawMarker(img, pixel, start, scale, cv::Scalar(0, 160, 0));
   drawMarker(img, pixel, goal, scale, cv::Scalar(0, 0, 220));
+  // The legend last, on white, so that nothing covers it.
+  for (std::size_t k = 0; k < paths.size(); ++k) {
+    int baseline = 0;
+    const cv::Size text = cv::getTextSize(paths[k].label, cv::FONT_HERSHEY_SIMPLEX, 0.5, 1, &baseline);
+    const cv::Point at(10, 24 + 22 * static_cast<int>(k));
+    cv::rectangle(img, at + cv::Point(-4, -text.height - 4), at + cv::Point(text.width + 4, baseline + 2),
+                  cv::Scalar(255, 255, 255), cv::FILLED);
+    cv::putText(img, paths[k].label, at, cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                cv::Scalar(paths[k].bgr[0], paths[k].bgr[1], paths[k].bgr[2]), 1, cv::LINE_AA);
+  }
   lattice::writeImageFile(png, img);
 }
 
