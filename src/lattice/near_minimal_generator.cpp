@@ -6,6 +6,7 @@
 // so each addition is a Dijkstra from the states it improves).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <queue>
 #include <set>
@@ -172,8 +173,10 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
   const int table_radius = static_cast<int>(std::ceil((1.0 + o.tolerance) * max_length / res)) + 1;
   const double table_size = static_cast<double>(m + 1) * n * (2.0 * table_radius + 1) * (2.0 * table_radius + 1);
   if (table_size > 3e7) {
-    detail::generatorError("a turning radius of " + std::to_string(rmin / res) + " cells with " + std::to_string(n) +
-         " headings is too large for the near-minimal generator (use the legacy generator)");
+    char what[160];
+    std::snprintf(what, sizeof what, "a turning radius of %.1f cells with %d headings is too large for the near-minimal "
+                  "generator (use the legacy generator)", rmin / res, n);
+    detail::generatorError(what);
   }
   const std::vector<Symmetry> group = symmetries();
   auto headingOf = [&](Vec v) { return detail::directionIndex(dirs, v); };
