@@ -43,7 +43,6 @@ target_sources(amha PRIVATE
   src/cli/bench_command.cpp
   src/cli/bench_lattice.cpp
   src/cli/bench_replan.cpp
-  src/cli/bench_queries.cpp
   src/cli/bench_smooth.cpp
   src/cli/path_metrics.cpp
 )

@@ -21,10 +21,10 @@
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "bench_command.h"
-#include "bench_queries.h"
 #include "exit_codes.h"
 #include "lattice_options.h"
 #include "line_plot.h"
+#include "random_queries.h"
 #include "run_json.h"
 #include "schedule_option.h"
 

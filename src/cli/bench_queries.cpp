@@ -1,51 +1,89 @@
-// Seeded random start/goal pairs (bench_queries.h).
-#include "bench_queries.h"
-
+// `amha bench queries`: the seeded start/goal pairs a benchmark runs, printed (and written as
+// JSON) so that other planners can be run on exactly the same ones.
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
 #include <memory>
-#include <random>
 
-#include <opencv2/imgproc.hpp>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
-#include "amha_planner/lattice/lattice_planner.h"
+#include "bench_command.h"
+#include "exit_codes.h"
+#include "lattice_options.h"
+#include "random_queries.h"
 
 namespace amha {
 namespace cli {
 
-std::vector<Query> randomQueries(const lattice::LatticeGraph& g, int count, unsigned seed, double min_distance,
-                                 bool solvable) {
-  const lattice::GridMap& m = g.map();
-  cv::Mat free(m.height, m.width, CV_8U);
-  for (int y = 0; y < m.height; ++y)
-    for (int x = 0; x < m.width; ++x) free.at<std::uint8_t>(y, x) = m.at(x, y) < lattice::kInscribedCost ? 255 : 0;
-  cv::Mat labels;
-  cv::connectedComponents(free, labels, 8, CV_32S);
-  std::unique_ptr<lattice::LatticePlanner> checker;
-  if (solvable) {
-    lattice::LatticeConfig c = g.config();
-    c.grid_anchor = true;
-    c.coarse_anchor = true;
-    checker.reset(new lattice::LatticePlanner(std::make_shared<lattice::GridMap>(g.map()), c));
+namespace {
+
+int benchQueriesMain(int argc, char** argv) {
+  CLI::App app("Prints seeded random start/goal pairs, one per line as \"sx,sy,st gx,gy,gt\" (map frame: m, m, "
+               "rad): collision-free for the robot, in one connected region of the cells its centre may occupy, "
+               "at least --min-distance apart.", argv[0]);
+  LatticeOptions lo;
+  lo.addTo(app);
+  int count = 20;
+  unsigned seed = 1;
+  double min_distance = 0.0;
+  std::string json_path;
+  app.add_option("--count", count, "number of pairs (default 20)");
+  app.add_option("--seed", seed, "random seed (default 1)");
+  app.add_option("--min-distance", min_distance, "minimum straight-line start-goal distance, m (default 0)");
+  app.add_option("--json", json_path, "also write {\"queries\": [{\"start\": [x, y, theta], \"goal\": [...]}, ...]}");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> rx(0, m.width - 1), ry(0, m.height - 1), rh(0, g.numHeadings() - 1);
-  std::vector<Query> out;
-  for (int tries = 0; static_cast<int>(out.size()) < count && tries < 1000000; ++tries) {
-    const int sx = rx(rng), sy = ry(rng), sh = rh(rng), gx = rx(rng), gy = ry(rng), gh = rh(rng);
-    if (!g.stateValid(sx, sy, sh) || !g.stateValid(gx, gy, gh)) continue;
-    if (labels.at<int>(sy, sx) != labels.at<int>(gy, gx)) continue;
-    if (std::hypot(gx - sx, gy - sy) * m.resolution < min_distance) continue;
-    const Query q{g.stateToPose(sx, sy, sh), g.stateToPose(gx, gy, gh)};
-    if (checker) {
-      PlannerConfig w = defaultConfig(Algorithm::kWeightedAStar);
-      SearchLimits limits;
-      limits.time_limit_s = 2.0;
-      if (checker->plan(q.start, q.goal, w, limits).solutions.empty()) continue;
+  if (count < 1 || !(min_distance >= 0.0) || !std::isfinite(min_distance)) {
+    std::cerr << "amha bench queries: --count must be >= 1 and --min-distance finite and >= 0\n";
+    return kExitUsage;
+  }
+  std::vector<Query> queries;
+  std::unique_ptr<lattice::LatticeGraph> graph;
+  try {
+    const LoadedLattice loaded = loadLattice(lo);
+    graph.reset(new lattice::LatticeGraph(loaded.map, loaded.config));
+    queries = randomQueries(*graph, count, seed, min_distance);
+  } catch (const lattice::LatticeError& e) {
+    std::cerr << "amha bench queries: " << e.what() << "\n";
+    return exitCodeFor(e);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "amha bench queries: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  if (static_cast<int>(queries.size()) < count) {
+    std::cerr << "amha bench queries: found only " << queries.size() << " of " << count
+              << " pairs in a million draws (lower --min-distance?)\n";
+    return kExitBadInstances;
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const Query& q : queries) {
+    std::printf("%.4f,%.4f,%.6f %.4f,%.4f,%.6f\n", q.start.x, q.start.y, q.start.theta, q.goal.x, q.goal.y, q.goal.theta);
+    list.push_back({{"start", {q.start.x, q.start.y, q.start.theta}}, {"goal", {q.goal.x, q.goal.y, q.goal.theta}}});
+  }
+  if (!json_path.empty()) {
+    std::ofstream out(json_path);
+    out << nlohmann::json{{"command", benchCommandLine(argc, argv)}, {"seed", seed}, {"min_distance", min_distance},
+                          {"queries", list}}
+               .dump(1)
+        << "\n";
+    out.flush();
+    if (!out) {
+      std::cerr << "amha bench queries: cannot write " << json_path << "\n";
+      return kExitOutput;
     }
-    out.push_back(q);
   }
-  return out;
+  return kExitOk;
 }
+
+}  // namespace
+
+AMHA_REGISTER_BENCHMARK("queries", "seeded random start/goal pairs for a map and robot (to run other planners on)",
+                        benchQueriesMain);
 
 }  // namespace cli
 }  // namespace amha

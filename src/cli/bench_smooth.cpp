@@ -18,7 +18,7 @@
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/path_smoother.h"
 #include "bench_command.h"
-#include "bench_queries.h"
+#include "random_queries.h"
 #include "exit_codes.h"
 #include "lattice_image.h"
 #include "lattice_options.h"
@@ -266,7 +266,9 @@ int benchSmoothMain(int argc, char** argv) {
         drawn = i;
       }
     }
-    writePathsImage(base + ".png", map, {{rows[drawn].raw, {40, 40, 220}}, {rows[drawn].smoothed, {200, 90, 20}}}, 1.0, 1400);
+    writePathsImage(base + ".png", map,
+                    {{"lattice path", {40, 40, 220}, rows[drawn].raw}, {"smoothed", {200, 90, 20}, rows[drawn].smoothed}},
+                    rows[drawn].raw.front(), rows[drawn].raw.back(), 1.0);
     std::ofstream out_csv(base + ".csv");
     out_csv << csv.str();
     std::ofstream out_sum(base + "_summary.txt");

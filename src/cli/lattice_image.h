@@ -19,16 +19,18 @@ void writePlanImage(const std::string& png_path, const lattice::GridMap& map,
                     const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
                     const lattice::Pose2D& start, const lattice::Pose2D& goal);
 
-struct ColouredPath {
+/// A path drawn in its own colour (BGR) and named in the legend.
+struct LabelledPath {
+  std::string label;
+  std::array<int, 3> bgr;
   std::vector<lattice::Pose2D> poses;
-  std::array<double, 3> bgr;  ///< colour, 0..255 (blue, green, red)
 };
 
-/// The part of the map around the paths (plus `margin` metres), at most about `max_side` pixels
-/// wide or high (whole cells, up to 16 pixels each), each path drawn over it in its colour, in
-/// order. Throws std::runtime_error if there is no pose or the file cannot be written.
-void writePathsImage(const std::string& png_path, const lattice::GridMap& map, const std::vector<ColouredPath>& paths,
-                     double margin, int max_side);
+/// PNG of several paths on the part of the map around them (with a margin of `margin_m`),
+/// scaled up to about 900 pixels, each path in its colour, with a legend, start and goal.
+/// Throws std::runtime_error if the file cannot be written.
+void writePathsImage(const std::string& png_path, const lattice::GridMap& map, const std::vector<LabelledPath>& paths,
+                     const lattice::Pose2D& start, const lattice::Pose2D& goal, double margin_m = 2.0);
 
 }  // namespace cli
 }  // namespace amha

@@ -20,11 +20,12 @@ void LatticeOptions::addTo(CLI::App& app) {
                  "map_server maps: occupancy >= this (1..100) is an obstacle, as the server's ~lethal_threshold "
                  "(default 65, map_server's occupied_thresh); 100 reads a costmap_2d costmap saved in raw mode: "
                  "100 lethal, 99 inscribed, 1..98 graded costs");
-  app.add_option("--mprim", mprim, "SBPL .mprim motion primitives (default: generate them)");
+  app.add_option("--mprim", mprim, "motion primitives: SBPL .mprim or Nav2 lattice .json file (default: generate them)");
   app.add_option("--turning-radius", turning_radius, "generated primitives: minimum turning radius in m (default 0.5)");
   app.add_option("--headings", headings, "generated primitives: headings, a multiple of 8 (default 16)");
-  app.add_flag("--reverse", reverse, "generated primitives: allow backward motion");
+  app.add_flag("--reverse", reverse, "allow backward motion (generated primitives, Nav2 .json files)");
   app.add_flag("--no-turn-in-place", no_turn_in_place, "generated primitives: no turns on the spot");
+  primitive.addTo(app);
   app.add_option("--footprint", footprint, "robot polygon \"x,y;x,y;...\" in metres (base frame)");
   app.add_option("--radius", radius, "round robot radius in m (default 0.2; 0 = point robot)");
   app.add_option("--cost-penalty", cost_penalty,
@@ -109,14 +110,15 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   out.is_sbpl_env = f.size() >= 4 && f.compare(f.size() - 4, 4, ".cfg") == 0;
 
   lattice::LatticeConfig& c = out.config;
-  if (!o.mprim.empty() && (o.turning_radius > 0.0 || o.reverse || o.no_turn_in_place)) {
-    throw std::invalid_argument("--mprim cannot be combined with the generator options (--turning-radius, --reverse, --no-turn-in-place)");
+  if (!o.mprim.empty() && (o.turning_radius > 0.0 || o.no_turn_in_place)) {
+    throw std::invalid_argument("--mprim cannot be combined with the generator options (--turning-radius, --no-turn-in-place)");
   }
   c.mprim_file = o.mprim;
   if (o.turning_radius > 0.0) c.turning_radius = o.turning_radius;
   c.num_headings = o.headings;
   c.allow_reverse = o.reverse;
   c.turn_in_place = !o.no_turn_in_place;
+  o.primitive.applyTo(c);
   if (!o.footprint.empty() && o.radius >= 0.0) throw std::invalid_argument("give --footprint or --radius, not both");
   if (!o.footprint.empty()) c.footprint = parseFootprint(o.footprint);
   if (o.radius >= 0.0) c.robot_radius = o.radius;

@@ -11,6 +11,7 @@
 
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/map_loaders.h"
+#include "primitive_options.h"
 
 namespace amha {
 namespace cli {
@@ -38,6 +39,7 @@ struct LatticeOptions {
   std::string inadmissible_kind = "kinematic";
   bool backward = false;
   bool turn_term = false;  // --no-turn-term, kept for old scripts, only restates the default
+  PrimitiveOptions primitive;  // --primitive-generator, --motion-model, --reverse-penalty
 
   void addTo(CLI::App& app);
 };

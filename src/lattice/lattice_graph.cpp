@@ -63,17 +63,7 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
   if (!map_) fail(LatticeError::Kind::kMap, "map: null");
   validateMap(*map_);
   validateConfig(config_);
-  if (!config_.mprim_file.empty()) {
-    primitives_ = readMprimFile(config_.mprim_file, map_->resolution);
-  } else {
-    PrimitiveGeneratorOptions o;
-    o.resolution = map_->resolution;
-    o.num_headings = config_.num_headings;
-    o.turning_radius = config_.turning_radius;
-    o.allow_reverse = config_.allow_reverse;
-    o.turn_in_place = config_.turn_in_place;
-    primitives_ = generatePrimitives(o);
-  }
+  primitives_ = primitivesFor(config_, map_->resolution);
   footprint_ = RobotFootprint::fromConfig(config_);
   penalty_q_.resize(256);
   for (int c = 0; c < 256; ++c) {

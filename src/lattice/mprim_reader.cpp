@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "amha_planner/lattice/motion_primitives.h"
+#include "primitive_geometry.h"
 #include "tokenizer.h"
 
 namespace amha {
@@ -26,6 +27,25 @@ int floorDiv(double v) { return static_cast<int>(std::max(-2e9, std::min(2e9, st
 // the footprint's sweep) grows with its length. Real ones are a few cells to a few dozen (SBPL's
 // longest is 8; a 10 m turning radius at 0.05 m gives 80-cell arcs).
 constexpr double kMaxPrimitiveCells = 1000.0;
+
+// .mprim files do not say which part of a primitive is an arc, nor whether it drives
+// backwards: estimated from the poses (for writing Nav2 files).
+void describeShape(const PrimitiveSet& set, MotionPrimitive& p) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < p.poses.size(); ++k) {
+    length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
+  }
+  const double turn = angleDistance(set.heading_angles[p.start_heading], set.heading_angles[p.end_heading]);
+  p.arc_length = p.turning_radius != 0.0 ? std::min(length, std::fabs(p.turning_radius) * turn) : 0.0;
+  p.straight_length = length - p.arc_length;
+  const double phi = set.heading_angles[p.start_heading];
+  for (std::size_t k = 1; k < p.poses.size(); ++k) {
+    const double dx = p.poses[k].x - p.poses[0].x, dy = p.poses[k].y - p.poses[0].y;
+    if (std::hypot(dx, dy) < 1e-9) continue;
+    p.reverse = dx * std::cos(phi) + dy * std::sin(phi) < -0.5 * std::hypot(dx, dy);
+    break;
+  }
+}
 
 }  // namespace
 
@@ -158,6 +178,8 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
       }
     }
   }
+  for (MotionPrimitive& p : set.primitives) describeShape(set, p);
+  detail::dropCopies(set);
   return set;
 }
 

@@ -7,6 +7,8 @@
 
 #include <XmlRpcValue.h>
 
+#include "amha_planner/lattice/motion_primitives.h"
+
 namespace amha_planner {
 
 namespace {
@@ -153,6 +155,17 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   if (l.num_headings % 8 != 0) bad(pnh, "num_headings", "must be a multiple of 8");
   l.allow_reverse = getBool(pnh, "allow_reverse", l.allow_reverse);
   l.turn_in_place = getBool(pnh, "turn_in_place", l.turn_in_place);
+  const std::string model = getString(pnh, "motion_model", amha::lattice::motionModelName(l.motion_model));
+  if (!amha::lattice::parseMotionModel(model, &l.motion_model)) {
+    bad(pnh, "motion_model", "'" + model + "' is not diff, ackermann or omni");
+  }
+  const std::string generator = getString(pnh, "primitive_generator", "near-minimal");
+  if (generator != "near-minimal" && generator != "legacy") {
+    bad(pnh, "primitive_generator", "'" + generator + "' is not near-minimal or legacy");
+  }
+  l.primitive_generator = generator == "legacy" ? amha::lattice::PrimitiveGenerator::kLegacy
+                                                : amha::lattice::PrimitiveGenerator::kNearMinimal;
+  l.reverse_multiplier = getDouble(pnh, "reverse_penalty", l.reverse_multiplier, 1e-3, 1e6);
   l.cost_penalty = getDouble(pnh, "cost_penalty", l.cost_penalty, 0.0, 1e6);
   l.num_inadmissible = getInt(pnh, "num_inadmissible", l.num_inadmissible, 0, 3);
   l.nominal_speed = getDouble(pnh, "nominal_speed", l.nominal_speed, 1e-3, 100.0);

@@ -95,6 +95,39 @@ put("mprim", "four-headings-crlf.mprim",
              % (h, dx, dy, h, 1.5707963 * h, dx * 0.05, dy * 0.05, 1.5707963 * h)
              for h, (dx, dy) in enumerate([(1, 0), (0, 1), (-1, 0), (0, -1)]))).replace("\n", "\r\n"))
 
+# ---- nav2_lattice: the lattice test fixture (Nav2's JSON format), cut to 2 primitives a heading
+# and 3 poses a primitive, compact; and a hand-made 4-heading file.
+import json
+
+
+def cut_nav2(doc, per_heading, max_poses):
+    kept, count = [], {}
+    for p in doc["primitives"]:
+        h = p["start_angle_index"]
+        if count.get(h, 0) < per_heading:
+            count[h] = count.get(h, 0) + 1
+            poses = p["poses"]
+            p = dict(p, trajectory_id=len(kept), poses=poses[:max_poses - 1] + poses[-1:] if len(poses) > max_poses else poses)
+            kept.append(p)
+    doc = dict(doc, primitives=kept)
+    doc["lattice_metadata"] = dict(doc["lattice_metadata"], number_of_trajectories=len(kept))
+    return json.dumps(doc, separators=(",", ":"))
+
+
+fixture = os.path.join(HERE, "..", "lattice", "data", "nav2_diff_8_headings.json")
+if os.path.exists(fixture):
+    d = json.load(open(fixture))
+    put("nav2_lattice", "cut-diff-8-headings.json", cut_nav2(d, 2, 3))
+    put("nav2_lattice", "cut-diff-8-headings-turns.json", cut_nav2(dict(d, primitives=d["primitives"][2:]), 3, 2))
+four = {"version": 1.0, "lattice_metadata": {"motion_model": "ackermann", "turning_radius": 0.2, "grid_resolution": 0.1,
+                                             "num_of_headings": 4, "heading_angles": [0, 1.5707963267948966, 3.141592653589793, 4.71238898038469],
+                                             "number_of_trajectories": 4},
+        "primitives": [{"trajectory_id": h, "start_angle_index": h, "end_angle_index": h, "left_turn": True,
+                        "trajectory_radius": 0, "trajectory_length": 0.1, "arc_length": 0, "straight_length": 0.1,
+                        "poses": [[round(0.1 * [1, 0, -1, 0][h], 1), round(0.1 * [0, 1, 0, -1][h], 1), 1.5707963267948966 * h]]}
+                       for h in range(4)]}
+put("nav2_lattice", "four-headings.json", json.dumps(four))
+
 # ---- map_server: YAML, NUL, image bytes (the YAML names the image "map.img").
 def yaml(mode=None, negate=0, res="0.05", origin="[-1.0, -2.0, 0.0]"):
     y = "image: map.img\nresolution: %s\norigin: %s\nnegate: %d\noccupied_thresh: 0.65\nfree_thresh: 0.196\n" % (

@@ -20,33 +20,9 @@ namespace amha {
 namespace lattice {
 namespace {
 
-// The start cell's 8-connected component of cells below kInscribedCost, by a plain flood fill.
-std::vector<char> floodFill(const GridMap& m, int sx, int sy) {
-  std::vector<char> in(m.cost.size(), 0);
-  if (m.at(sx, sy) >= kInscribedCost) return in;
-  std::queue<std::pair<int, int>> q;
-  q.push({sx, sy});
-  in[static_cast<std::size_t>(sy) * m.width + sx] = 1;
-  while (!q.empty()) {
-    const auto [x, y] = q.front();
-    q.pop();
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = x + dx, ny = y + dy;
-        if (nx < 0 || ny < 0 || nx >= m.width || ny >= m.height) continue;
-        const std::size_t i = static_cast<std::size_t>(ny) * m.width + nx;
-        if (in[i] || m.cost[i] >= kInscribedCost) continue;
-        in[i] = 1;
-        q.push({nx, ny});
-      }
-    }
-  }
-  return in;
-}
-
 // nearestReachableGoal's specification, by looking at every state of the map.
 GoalChoice bruteForceChoice(const LatticeGraph& g, const Pose2D& goal, double tol, int sx, int sy) {
-  const std::vector<char> in = floodFill(g.map(), sx, sy);
+  const std::vector<char> in = test::floodFill(g.map(), sx, sy);
   GoalChoice best;
   best.outcome = GoalChoice::Outcome::kNoFreePose;
   std::tuple<double, double, std::int64_t> key{INFINITY, INFINITY, 0};
@@ -108,7 +84,7 @@ TEST(GoalToleranceTest, ReachabilityEqualsAFloodFillOverManyQuestions) {
     int largest = 0;
     for (int start = 0; start < 6; ++start) {
       const int sx = static_cast<int>(rng() % 40), sy = static_cast<int>(rng() % 40);
-      const std::vector<char> want = floodFill(*map, sx, sy);
+      const std::vector<char> want = test::floodFill(*map, sx, sy);
       std::vector<int> cells(map->cost.size());
       for (std::size_t i = 0; i < cells.size(); ++i) cells[i] = static_cast<int>(i);
       std::shuffle(cells.begin(), cells.end(), rng);

@@ -159,6 +159,7 @@ void checkGeneratedSet(const PrimitiveSet& s, const PrimitiveGeneratorOptions& o
   }
 }
 
+// The legacy generator (PrimitiveGenerator::kLegacy), kept for old benchmarks.
 TEST(MprimGeneratorTest, ExactEndsSymmetryAndTurningRadius) {
   for (int headings : {8, 16, 24, 32}) {
     for (bool reverse : {false, true}) {
@@ -168,6 +169,7 @@ TEST(MprimGeneratorTest, ExactEndsSymmetryAndTurningRadius) {
       o.turning_radius = 0.4;
       o.allow_reverse = reverse;
       o.turn_in_place = !reverse;
+      o.generator = PrimitiveGenerator::kLegacy;
       const PrimitiveSet s = generatePrimitives(o);
       SCOPED_TRACE(headings);
       checkGeneratedSet(s, o);
@@ -175,6 +177,7 @@ TEST(MprimGeneratorTest, ExactEndsSymmetryAndTurningRadius) {
     }
   }
   PrimitiveGeneratorOptions bad;
+  bad.generator = PrimitiveGenerator::kLegacy;
   bad.num_headings = 12;
   EXPECT_THROW(generatePrimitives(bad), LatticeError);
   bad.num_headings = 16;
@@ -190,6 +193,7 @@ TEST(MprimGeneratorTest, WrittenSetsReadBack) {
     o.num_headings = headings;
     o.turning_radius = 0.3;
     o.allow_reverse = true;
+    o.generator = headings == 16 ? PrimitiveGenerator::kLegacy : PrimitiveGenerator::kNearMinimal;
     const PrimitiveSet s = generatePrimitives(o);
     const std::string path = dir + "/g" + std::to_string(headings) + ".mprim";
     writeMprimFile(path, s);

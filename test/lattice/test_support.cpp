@@ -87,6 +87,29 @@ LatticeConfig smallRobot(unsigned seed) {
   return c;
 }
 
+std::vector<char> floodFill(const GridMap& m, int sx, int sy) {
+  std::vector<char> in(m.cost.size(), 0);
+  if (m.at(sx, sy) >= kInscribedCost) return in;
+  std::queue<std::pair<int, int>> q;
+  q.push({sx, sy});
+  in[static_cast<std::size_t>(sy) * m.width + sx] = 1;
+  while (!q.empty()) {
+    const auto [x, y] = q.front();
+    q.pop();
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= m.width || ny >= m.height) continue;
+        const std::size_t i = static_cast<std::size_t>(ny) * m.width + nx;
+        if (in[i] || m.cost[i] >= kInscribedCost) continue;
+        in[i] = 1;
+        q.push({nx, ny});
+      }
+    }
+  }
+  return in;
+}
+
 std::vector<std::array<double, 2>> rectangle(double hl, double hw) {
   return {{-hl, -hw}, {hl, -hw}, {hl, hw}, {-hl, hw}};
 }

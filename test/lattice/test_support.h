@@ -32,6 +32,9 @@ std::vector<Cost> dijkstraFrom(const LatticeGraph& g, const LatticeState& s,
 /// options varied with `seed` (for the random maps of randomMap at 0.05 m).
 LatticeConfig smallRobot(unsigned seed);
 
+/// The start cell's 8-connected component of cells below kInscribedCost (1 = in it), by a
+/// plain flood fill; all 0 if the start cell itself is not below it.
+std::vector<char> floodFill(const GridMap& m, int sx, int sy);
 /// A small rectangular footprint (half length, half width in metres).
 std::vector<std::array<double, 2>> rectangle(double half_length, double half_width);
 

@@ -93,10 +93,23 @@ struct CellRect {
 };
 
 class LatticeGraph;
+/// How the robot may move, for generated primitives (added after the API freeze): a
+/// differential drive also turns on the spot, an Ackermann vehicle never does, an
+/// omnidirectional robot also turns on the spot and slides sideways (Nav2's "diff", "ackermann"
+/// and "omni").
+enum class MotionModel { kDifferential, kAckermann, kOmni };
+
+/// Which generator makes the primitives when no file is given (added after the API freeze).
+enum class PrimitiveGenerator {
+  kNearMinimal,  ///< a near-minimal control set (Pivtoraiko & Kelly; motion_primitives.h)
+  kLegacy,       ///< the first generator: arcs to the neighbouring headings only
+};
 
 /// The robot and its motion model.
 struct LatticeConfig {
-  std::string mprim_file;        ///< SBPL .mprim file; empty: generate primitives from below
+  /// Primitive file, by extension: a Nav2 lattice file (.json) or an SBPL .mprim file (any
+  /// other); empty: generate primitives from the options below.
+  std::string mprim_file;
   int num_headings = 16;         ///< generated primitives: a multiple of 8
   double turning_radius = 0.5;   ///< generated primitives: minimum turning radius (m)
   bool allow_reverse = false;    ///< generated primitives: add backward motions
@@ -165,6 +178,13 @@ struct LatticeConfig {
   /// and repairs them on the first query to their goal (HeuristicGridBuilder::repair: exact,
   /// and far quicker than computing them again unless the change reroutes most of the map).
   bool repair_heuristics = true;
+  /// Generated primitives: the generator and the motion model (turn_in_place = false also keeps
+  /// kDifferential and kOmni from turning on the spot). allow_reverse adds backward motions,
+  /// costed reverse_multiplier times their forward twins; with a Nav2 file (.json, which has
+  /// forward motions only) it adds them too, as Smac's allow_reverse_expansion does.
+  PrimitiveGenerator primitive_generator = PrimitiveGenerator::kNearMinimal;
+  MotionModel motion_model = MotionModel::kDifferential;
+  double reverse_multiplier = 3.0;
 };
 
 /// A goal heading that any heading satisfies (GoalOptions::any_heading, and the heuristic
