@@ -11,6 +11,7 @@
 
 #include "amha_planner/lattice/lattice_graph.h"
 #include "distance_repair.h"
+#include "dial_queue.h"
 #include "radix_heap.h"
 
 namespace amha {
@@ -226,45 +227,6 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   }
 }
 
-namespace {
-
-// Dial's bucket queue: exact for integer keys when every step is below the bucket count, and
-// O(1) per operation, which beats a heap when the steps are small (most maps).
-class DialQueue {
- public:
-  explicit DialQueue(std::uint32_t max_step) {
-    std::uint32_t n = 1;
-    while (n <= max_step) n <<= 1;
-    buckets_.resize(n);
-    mask_ = n - 1;
-  }
-  bool empty() const { return size_ == 0; }
-  void push(std::uint32_t key, std::uint32_t value) {
-    buckets_[key & mask_].push_back(value);
-    ++size_;
-  }
-  std::pair<std::uint32_t, std::uint32_t> pop() {
-    while (buckets_[cur_ & mask_].empty()) ++cur_;
-    std::vector<std::uint32_t>& b = buckets_[cur_ & mask_];
-    const std::uint32_t v = b.back();
-    b.pop_back();
-    --size_;
-    return {cur_, v};
-  }
-  std::uint32_t upcoming(std::size_t ahead, std::uint32_t fallback) const {
-    const std::vector<std::uint32_t>& b = buckets_[cur_ & mask_];
-    return b.size() > ahead ? b[b.size() - 1 - ahead] : fallback;
-  }
-  /// The key of the last pop (0 before the first): the largest, the queue being monotone.
-  std::uint32_t lastPopped() const { return cur_; }
-
- private:
-  std::vector<std::vector<std::uint32_t>> buckets_;
-  std::uint32_t mask_ = 0, cur_ = 0;
-  std::size_t size_ = 0;
-};
-
-}  // namespace
 
 template <class Queue>
 bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const {
@@ -403,7 +365,7 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   // no distance can reach the saturation value.
   dist[goal] = 0;
   if (kind.max_step < 4096 && !canSaturate(kind)) {
-    DialQueue q(kind.max_step);
+    detail::DialQueue q(kind.max_step);
     return search(q);
   }
   detail::RadixHeap q;

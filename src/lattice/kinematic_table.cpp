@@ -13,6 +13,7 @@
 #include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/motion_primitives.h"
+#include "dial_queue.h"
 #include "radix_heap.h"
 
 namespace amha {
@@ -158,45 +159,63 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   }
   const double limit = 2.0 * s_ * R;
   const double slack = 1e-9 * limit + 1e-6;
-  detail::RadixHeap heap;
-  auto seed = [&](int h) {
-    const std::size_t i = slice->index(0, 0, h);
-    dist[i] = 0;
-    heap.push(0, static_cast<std::uint32_t>(i));
-  };
-  if (heading == kAnyKey) {
-    for (int h = 0; h < nh; ++h) seed(h);
-  } else {
-    seed(heading);
-  }
   // The offset of each cell of the disc, to decode popped states.
   std::vector<std::array<std::int16_t, 2>> offset(cells);
   for (int y = -R; y <= R; ++y) {
     const int w = slice->half_width_[static_cast<std::size_t>(y + R)];
-    for (int x = -w; x <= w; ++x) offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x), static_cast<std::int16_t>(y)};
-  }
-  for (std::uint32_t pops = 0; !heap.empty();) {
-    const auto [d, i] = heap.pop();
-    if (d != dist[i]) continue;
-    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return nullptr;
-    const int h = static_cast<int>(i % static_cast<std::uint32_t>(nh));
-    const int x = offset[i / static_cast<std::uint32_t>(nh)][0], y = offset[i / static_cast<std::uint32_t>(nh)][1];
-    for (const KinematicMove& m : by_heading[static_cast<std::size_t>(h)]) {
-      const int px = to_goal ? x - m.dx : x + m.dx, py = to_goal ? y - m.dy : y + m.dy;
-      if (!slice->inDisc(px, py)) continue;
-      const std::uint64_t nd = static_cast<std::uint64_t>(d) + static_cast<std::uint64_t>(m.cost);
-      // Only states with d + s |p| <= 2 s R can lie on a path the table needs (header).
-      if (static_cast<double>(nd) + s_ * std::sqrt(static_cast<double>(px) * px + static_cast<double>(py) * py) >
-          limit + slack) {
-        continue;
-      }
-      const std::size_t j = slice->index(px, py, to_goal ? m.start_heading : m.end_heading);
-      if (nd < dist[j]) {
-        dist[j] = static_cast<std::uint16_t>(nd);
-        heap.push(static_cast<std::uint32_t>(nd), static_cast<std::uint32_t>(j));
-      }
+    for (int x = -w; x <= w; ++x) {
+      offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x), static_cast<std::int16_t>(y)};
     }
   }
+  Cost max_cost = 0;
+  for (const KinematicMove& m : moves_) max_cost = std::max(max_cost, m.cost);
+  // Dial's buckets hold a 4-byte state per entry (the radix heap 8): the queue is most of a
+  // build's transient memory.
+  auto search = [&](auto& queue) {
+    auto seed = [&](int h) {
+      const std::size_t i = slice->index(0, 0, h);
+      dist[i] = 0;
+      queue.push(0, static_cast<std::uint32_t>(i));
+    };
+    if (heading == kAnyKey) {
+      for (int h = 0; h < nh; ++h) seed(h);
+    } else {
+      seed(heading);
+    }
+    for (std::uint32_t pops = 0; !queue.empty();) {
+      const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
+      const std::uint32_t d = top.first, i = top.second;
+      if (d != dist[i]) continue;
+      if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
+      const int h = static_cast<int>(i % static_cast<std::uint32_t>(nh));
+      const int x = offset[i / static_cast<std::uint32_t>(nh)][0], y = offset[i / static_cast<std::uint32_t>(nh)][1];
+      for (const KinematicMove& m : by_heading[static_cast<std::size_t>(h)]) {
+        const int px = to_goal ? x - m.dx : x + m.dx, py = to_goal ? y - m.dy : y + m.dy;
+        if (!slice->inDisc(px, py)) continue;
+        const std::uint64_t nd = static_cast<std::uint64_t>(d) + static_cast<std::uint64_t>(m.cost);
+        // Only states with d + s |p| <= 2 s R can lie on a path the table needs (header).
+        if (static_cast<double>(nd) + s_ * std::sqrt(static_cast<double>(px) * px + static_cast<double>(py) * py) >
+            limit + slack) {
+          continue;
+        }
+        const std::size_t j = slice->index(px, py, to_goal ? m.start_heading : m.end_heading);
+        if (nd < dist[j]) {
+          dist[j] = static_cast<std::uint16_t>(nd);
+          queue.push(static_cast<std::uint32_t>(nd), static_cast<std::uint32_t>(j));
+        }
+      }
+    }
+    return true;
+  };
+  bool complete;
+  if (max_cost < 65536) {
+    detail::DialQueue queue(static_cast<std::uint32_t>(max_cost));
+    complete = search(queue);
+  } else {
+    detail::RadixHeap queue;
+    complete = search(queue);
+  }
+  if (!complete) return nullptr;
   // The cap: K = min(T, floor(G)) with G = s (2R - |p|).
   for (int y = -R; y <= R; ++y) {
     const int w = slice->half_width_[static_cast<std::size_t>(y + R)];

@@ -515,6 +515,25 @@ bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) {
   return tables->prepare(direction, &stop);
 }
 
+bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
+                                            const SearchLimits& limits) {
+  const auto& tables = impl_->graph->kinematicTables();
+  if (!tables) return true;
+  const LatticeGraph& g = *impl_->graph;
+  const bool backward = g.config().backward_search;
+  int x = 0, y = 0, heading = 0;
+  if (!g.poseToState(backward ? start : goal, &x, &y, &heading)) return true;  // plan() will refuse it
+  if (goal_options.any_heading && !backward) heading = kAnyHeading;
+  GridStop stop;
+  stop.cancel = limits.cancel;
+  if (limits.time_limit_s < 1e9) {
+    stop.deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
+  }
+  return tables->lookup(backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, heading,
+                        &stop).valid();
+}
+
 std::size_t LatticePlanner::kinematicTableBytes() const {
   const auto& tables = impl_->graph->kinematicTables();
   return tables ? tables->bytes() : 0;
