@@ -14,8 +14,8 @@
 //    lattice whose edges cost no more (a map only removes edges and adds cell-cost penalties);
 //  - floor(G) is consistent: G changes by at most s_c |d| <= cost along an edge of
 //    displacement d, and floor(a) - floor(b) <= ceil(a - b) <= cost (integers);
-//  - min and max of consistent heuristics are consistent, and all are 0 or below at the goal
-//    only where admissible (K(goal) = T(goal) = 0 for the goal's own heading).
+//  - min and max of consistent heuristics are consistent, and K is 0 at the goal itself
+//    (T = 0 there), so it is also admissible.
 // Computing T only inside the disc is exact where it matters: if T(s) <= G(s), every state p
 // on a cheapest path from s has T(p) <= T(s) - s_c |s - p| <= 2 s_c R - s_c |p - goal| (each
 // action costs at least s_c per cell of displacement), and with T(p) >= s_c |p - goal| this
