@@ -77,7 +77,10 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
     std::vector<KinematicMove> moves;
     moves.reserve(actions_.size());
     for (const LatticeAction& a : actions_) moves.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
-    const int radius = static_cast<int>(std::ceil(config_.kinematic_radius / map_->resolution - 1e-9));
+    // At most kMaxKinematicCells: a table's size grows with the square of its radius in cells
+    // (16 MB a table at 400 cells and 16 headings), and finer maps do not need a wider one.
+    const int radius = std::min(LatticeConfig::kMaxKinematicCells,
+                                static_cast<int>(std::ceil(config_.kinematic_radius / map_->resolution - 1e-9)));
     kinematic_ = KinematicTables::shared(moves, primitives_.heading_angles, euclid_per_cell_, std::max(1, radius));
   }
 }

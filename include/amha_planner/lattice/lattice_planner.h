@@ -161,6 +161,8 @@ struct LatticeConfig {
   /// goal, in metres (0: off). Admissible and consistent; the tables are built once per
   /// primitive set and shared by every query and map.
   double kinematic_radius = 15.0;
+  /// The table covers at most this many cells of radius (20 m at 5 cm, 10 m at 2.5 cm).
+  static constexpr int kMaxKinematicCells = 400;
   /// Add to the Euclidean and grid parts of the anchor a turning term: the cheapest cost of
   /// turning to the goal's heading (admissible and consistent either way). Off by default:
   /// under an inflation weight it draws the search towards states that face the goal's heading
