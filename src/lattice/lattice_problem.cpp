@@ -18,7 +18,6 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
       backward_(backward),
       width_(graph.width()),
-      height_(graph.height()),
       headings_(graph.numHeadings()) {
   if (graph.numHeadings() > 0xFFFF) throw LatticeError(LatticeError::Kind::kConfig, "too many headings");
   for (int k = 0; k < kNumGridKinds; ++k) grids_[k] = heur_ && heur_->grids[k] ? heur_->grids[k].get() : nullptr;
@@ -116,7 +115,6 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   }
   const LatticeState st = state(s);
   if (backward_) {
-    for (const LatticeAction* a : graph_.actionsInto(st.heading)) prefetchSlot(st.x - a->dx, st.y - a->dy, a->start_heading);
     for (const LatticeAction* a : graph_.actionsInto(st.heading)) {
       const int x = st.x - a->dx, y = st.y - a->dy;
       const Cost c = graph_.edgeCost(x, y, *a);  // checks that (x, y) and the motion are in the map
@@ -124,11 +122,6 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
       out.push_back(Edge{id(x, y, a->start_heading), c});
     }
     return;
-  }
-  // The successors' index slots lie in scattered pages: start loading them all before the
-  // edges' cells are checked, so that their cache misses overlap (id() was a fifth of the time).
-  for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading); ++a) {
-    prefetchSlot(st.x + a->dx, st.y + a->dy, a->end_heading);
   }
   for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading); ++a) {
     const Cost c = graph_.edgeCost(st.x, st.y, *a);

@@ -69,13 +69,7 @@ class LatticeProblem final : public SearchProblem {
   std::size_t numStates() const { return states_.size(); }
   /// The id of a state, creating it if new.
   StateId id(int x, int y, int heading);
-  /// Starts loading the index slot of (x, y, heading) if its page exists (any cell: outside the
-  /// map it does nothing).
-  void prefetchSlot(int x, int y, int heading) const {
-    if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
-    const std::uint32_t* page = pages_[static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile];
-    if (page != nullptr) __builtin_prefetch(page + static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading);
-  }
+
   /// The cheapest valid action from `from` that ends in `to` (nullptr if none), and its cost.
   const LatticeAction* actionBetween(StateId from, StateId to, Cost* cost) const;
   /// Anchor value (admissible and consistent): with the grid anchor, the largest of
@@ -94,7 +88,7 @@ class LatticeProblem final : public SearchProblem {
   bool kinematic_inadmissible_ = false;  // the inadmissible heuristics take the table too
   int num_inadmissible_;
   bool backward_ = false;
-  int width_, height_, headings_;
+  int width_, headings_;
   int tiles_x_;
   std::size_t page_entries_;
   std::vector<std::uint32_t*> pages_;                 // per 8 x 8 tile, null until touched
