@@ -1,5 +1,6 @@
 // Maps an Algorithm and its parameters onto the engines.
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,18 +34,16 @@ class AnaPlanner : public Planner {
   detail::AnaStar engine_;
 };
 
-void checkWeight(double w, const char* name) {
-  if (!std::isfinite(w) || w < 1.0) {
-    throw std::invalid_argument(std::string(name) + " must be a finite number >= 1, got " +
-                                std::to_string(w));
+// NaN fails both comparisons, so it is refused with the infinities.
+void checkRange(double v, double lo, const char* name) {
+  if (!(v >= lo && v <= kMaxWeight)) {
+    std::ostringstream m;
+    m << name << " must be a finite number in [" << lo << ", " << kMaxWeight << "], got " << v;
+    throw std::invalid_argument(m.str());
   }
 }
-void checkDecrement(double d, const char* name) {
-  if (!std::isfinite(d) || d < 0.0) {
-    throw std::invalid_argument(std::string(name) + " must be a finite number >= 0, got " +
-                                std::to_string(d));
-  }
-}
+void checkWeight(double w, const char* name) { checkRange(w, 1.0, name); }
+void checkDecrement(double d, const char* name) { checkRange(d, 0.0, name); }
 
 }  // namespace
 

@@ -12,6 +12,10 @@
 
 namespace amha_planner {
 
+/// Ranges of ~robot_radius and ~turning_radius (metres).
+constexpr double kMaxRobotRadius = 10.0;
+constexpr double kMaxTurningRadius = 100.0;
+
 struct PlannerParams {
   amha::lattice::LatticeConfig lattice;            ///< robot and motion model
   amha::lattice::OccupancyConversion occupancy;    ///< how the map's cells become costs
@@ -44,7 +48,8 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh);
 
 /// The search configuration for a request: `algorithm_name` "" keeps the configured algorithm;
 /// w1/w2 of 0 keep the configured weights (for ara and wastar, w1 is epsilon and w2 is unused).
-/// Returns false with a message for an unknown name or weights that are not finite and >= 1.
+/// Returns false with a message for an unknown name or weights outside [1, amha::kMaxWeight]
+/// (NaN and infinities included).
 bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_name, double w1,
                      double w2, amha::PlannerConfig* out, std::string* error);
 

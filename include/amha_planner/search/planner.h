@@ -55,6 +55,12 @@ struct SearchLimits {
   const std::atomic<bool>* cancel = nullptr;  ///< set to true from any thread to stop
 };
 
+/// The largest weight (w1, w2, epsilon) and weight decrement a planner accepts. Heuristic values
+/// are below 2^32, so w x h stays below 4.3e15: under 2^53 (keys, which are doubles, hold such
+/// integers exactly) and 500 times below the infinite-cost sentinel kInfiniteCost (2.3e18).
+/// Weights far below it already make the search greedy (docs/search.md, "Weights").
+constexpr double kMaxWeight = 1e6;
+
 /// Parameters. A-MHA* uses all of them; the others read what applies:
 ///  - MHA*: w1, w2 (one ImprovePath, no schedule);
 ///  - ARA*: w1 is epsilon, dw1 its decrement (w2 = 1, no inadmissible heuristics);
@@ -116,8 +122,8 @@ class Planner {
                               const SolutionCallback& on_solution = {}) = 0;
 };
 
-/// Makes the planner for config.algorithm. Throws std::invalid_argument for weights < 1 or
-/// non-finite, or negative decrements.
+/// Makes the planner for config.algorithm. Throws std::invalid_argument for weights that are
+/// not finite or outside [1, kMaxWeight], or decrements outside [0, kMaxWeight].
 std::unique_ptr<Planner> makePlanner(const PlannerConfig& config);
 
 /// Presets that reproduce the paper's settings for `algorithm` (documented in the README).
