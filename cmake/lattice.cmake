@@ -51,6 +51,12 @@ add_test(NAME amha_bench_replan_repairs_and_agrees
          COMMAND bash -c "out=$(\"$0\" bench replan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --updates 4 --window 60 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'not repaired: 0; unsolved: 0; first solutions that differ: 0' <<<\"$out\""
                  $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
+# Bad option values are refused with a usage error naming the option, absurd robots and coarse
+# blocks up front, and the time budget holds during the planner's setup (issue 22).
+add_test(NAME amha_plan_refusals
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_refusals_test.sh $<TARGET_FILE:amha>
+                 ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+
 # Contradicting flags are refused with a usage error (exit code 2), not silently resolved.
 add_test(NAME amha_plan_refuses_both_turn_flags
          COMMAND bash -c "out=$(\"$0\" plan --map x.pgm --start 0,0,0 --goal 1,1,0 --turn-term --no-turn-term 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 2 ] && grep -q excludes <<<\"$out\""

@@ -1,6 +1,8 @@
 // `amha plan`: plan on a map with the lattice planner, printing every improved solution.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 
@@ -13,6 +15,7 @@
 #include "lattice_options.h"
 #include "run_json.h"
 #include "schedule_option.h"
+#include "weight_options.h"
 
 namespace amha {
 namespace cli {
@@ -26,7 +29,7 @@ int planMain(int argc, char** argv) {
   lo.addTo(app);
   std::string start_text, goal_text, algorithm_name = "amha", json_path, image_path;
   double time_limit = 10.0, goal_tolerance = 0.0;
-  double w1 = NAN, w2 = NAN, dw1 = NAN, dw2 = NAN, eps = NAN;
+  std::optional<double> w1, w2, dw1, dw2, eps;
   QueueSchedule schedule = QueueSchedule::kRoundRobin;
   app.add_option("--start", start_text, "start pose x,y,theta (m, m, rad; .cfg maps: the file's start)");
   app.add_option("--goal", goal_text, "goal pose x,y,theta (.cfg maps: the file's end)");
@@ -38,12 +41,12 @@ int planMain(int argc, char** argv) {
                "end at the goal's position with whichever heading is cheapest (its own is ignored)");
   app.add_option("--algorithm", algorithm_name, "amha | mha | ara | ana | wastar | astar (default amha)");
   app.add_option("--time-limit", time_limit, "seconds, heuristic computation included (default 10)");
-  app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar)");
-  app.add_option("--w2", w2, "initial w2 (amha/mha)");
-  app.add_option("--dw1", dw1, "decrement of w1 per iteration");
-  app.add_option("--dw2", dw2, "decrement of w2 per iteration");
+  app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar), in [1, 1e6]")->check(weightRange());
+  app.add_option("--w2", w2, "initial w2 (amha/mha), in [1, 1e6]")->check(weightRange());
+  app.add_option("--dw1", dw1, "decrement of w1 per iteration, in [0, 1e6]")->check(decrementRange());
+  app.add_option("--dw2", dw2, "decrement of w2 per iteration, in [0, 1e6]")->check(decrementRange());
   cli::addScheduleOption(app, &schedule);
-  app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
+  app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1), in [1, 1e6]")->check(weightRange());
   app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
   app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
   try {
@@ -58,15 +61,14 @@ int planMain(int argc, char** argv) {
     return kExitUsage;
   }
   PlannerConfig pc = defaultConfig(algorithm);
-  if (!std::isnan(eps) && !std::isnan(w1)) {
+  if (eps && w1) {
     std::cerr << "amha plan: give --eps or --w1, not both\n";
     return kExitUsage;
   }
-  if (!std::isnan(eps)) pc.w1 = eps;
-  if (!std::isnan(w1)) pc.w1 = w1;
-  if (!std::isnan(w2)) pc.w2 = w2;
-  if (!std::isnan(dw1)) pc.dw1 = dw1;
-  if (!std::isnan(dw2)) pc.dw2 = dw2;
+  pc.w1 = eps.value_or(w1.value_or(pc.w1));
+  pc.w2 = w2.value_or(pc.w2);
+  pc.dw1 = dw1.value_or(pc.dw1);
+  pc.dw2 = dw2.value_or(pc.dw2);
   pc.schedule = schedule;
   try {
     makePlanner(pc);  // validates the weights before any heavy work
@@ -82,6 +84,9 @@ int planMain(int argc, char** argv) {
     std::cerr << "amha plan: --time-limit must be positive\n";
     return kExitUsage;
   }
+  // The budget covers everything: the planner's setup, the heuristic grids and the search.
+  SearchLimits limits;
+  limits.time_limit_s = time_limit;
 
   LoadedLattice loaded;
   lattice::Pose2D start, goal;
@@ -98,8 +103,11 @@ int planMain(int argc, char** argv) {
     start = start_text.empty() ? loaded.env.start : parsePose(start_text, "--start");
     goal = goal_text.empty() ? loaded.env.goal : parsePose(goal_text, "--goal");
     const auto t0 = std::chrono::steady_clock::now();
-    planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config));
+    planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config, limits));
     setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } catch (const lattice::SetupStopped& e) {
+    std::printf("status %s: 0 solutions (%s)\n", statusName(e.status()), e.what());
+    return kExitNoSolution;
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha plan: " << e.what() << "\n";
     return exitCodeFor(e);
@@ -114,8 +122,7 @@ int planMain(int argc, char** argv) {
   std::printf("start (%.3f, %.3f, %.3f)  goal (%.3f, %.3f, %.3f)\n", start.x, start.y, start.theta, goal.x, goal.y,
               goal.theta);
 
-  SearchLimits limits;
-  limits.time_limit_s = time_limit;
+  limits.time_limit_s = std::max(0.0, time_limit - setup_s);
   int count = 0;
   auto print = [&count](const lattice::LatticeSolution& s) {
     const Solution& q = s.search;
