@@ -194,6 +194,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.tf_timeout = getDouble(pnh, "tf_timeout", p.tf_timeout, 0.0, 60.0);
   p.max_queued_requests = getInt(pnh, "max_queued_requests", p.max_queued_requests, 0, 64);
   p.marker_spacing = getDouble(pnh, "marker_spacing", p.marker_spacing, 0.01, 1e3);
+  p.release_freed_memory = getBool(pnh, "release_freed_memory", p.release_freed_memory);
   // Check the search configuration once, so a bad weight fails at start-up, not per request.
   amha::PlannerConfig check;
   std::string error;

@@ -73,6 +73,10 @@ std::uint32_t statusForQueryError(lat::QueryError e) {
   return Status::INTERNAL_ERROR;
 }
 
+/// Blocks of this size or more are mapped alone (~release_freed_memory): a 4000 x 4000 map's
+/// arrays are tens of MB each, a request's small vectors far below.
+constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
+
 /// What a client is told when the request queue is full.
 std::string busyMessage(int max_queued) {
   return "busy: one request is planning and " + std::to_string(max_queued) +
@@ -108,6 +112,9 @@ void moveResponse(Plan::Response&& in, Result* out) {
 
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     : nh_(nh), pnh_(pnh), params_(loadPlannerParams(pnh)) {
+  if (params_.release_freed_memory && !mapLargeBlocksAlone(kLargeBlockBytes)) {
+    ROS_WARN("amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
+  }
   queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(params_.max_queued_requests));
   builder_ = std::make_unique<LatestJobRunner>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
@@ -133,8 +140,8 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   ros::NodeHandle action_nh(pnh_);
   action_nh.setCallbackQueue(&action_queue_);
   action_server_ = std::make_unique<ActionServer>(
-      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); },
-      [this](GoalHandle g) { onCancel(g); }, /*auto_start=*/false);
+      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); }, [this](GoalHandle g) { onCancel(g); });
+  action_server_->setGlobalFrame(params_.global_frame);
   action_server_->start();
 
   // Waiting service calls each hold a thread; one more answers BUSY while the queue is full.
@@ -160,7 +167,8 @@ PlannerServer::~PlannerServer() {
   }
   // Stop taking callbacks; waiting service threads return as their cancelled jobs finish.
   map_spinner_->stop();
-  builder_.reset();  // finishes a build under way, drops one waiting
+  stop_builds_ = true;
+  builder_.reset();  // stops a build under way, drops one waiting
   planner_built_.notify_all();
   action_spinner_->stop();
   service_spinner_->stop();
@@ -170,6 +178,12 @@ PlannerServer::~PlannerServer() {
   map_updates_sub_.shutdown();
   plan_srv_.shutdown();
   make_plan_srv_.shutdown();
+}
+
+void PlannerServer::releaseFreedMemory() {
+  if (!params_.release_freed_memory) return;
+  const FreedMemory f = freed_memory_.releaseIfMuchFreed();
+  if (f.trimmed) ROS_DEBUG("amha_planner: returned freed memory to the system (%.0f MB free in the heap)", f.free_bytes / 1e6);
 }
 
 std::shared_ptr<lat::LatticePlanner> PlannerServer::currentPlanner() const {
@@ -190,28 +204,56 @@ void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& 
   cancel_flags_.erase(flag);
 }
 
+bool PlannerServer::mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, nav_msgs::OccupancyGrid* out,
+                                     std::string* why) {
+  *out = in;
+  const std::string frame = normaliseFrame(in.header.frame_id);
+  if (frame.empty() || frame == params_.global_frame) return true;
+  // The transform when the map was made (the latest one if it has no stamp): a map in a frame
+  // that moves (odom) is placed where that frame was then.
+  try {
+    const auto t = tf_buffer_.lookupTransform(params_.global_frame, frame, in.header.stamp,
+                                              ros::Duration(params_.tf_timeout));
+    geometry_msgs::PoseStamped origin, moved;
+    origin.header = in.header;
+    origin.pose = in.info.origin;
+    tf2::doTransform(origin, moved, t);
+    out->info.origin = moved.pose;
+  } catch (const tf2::TransformException& e) {
+    *why = "it is in frame '" + frame + "', and there is no transform to the global frame '" +
+           params_.global_frame + "' (" + e.what() + ")";
+    return false;
+  }
+  return true;
+}
+
 void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
   // Checked (converted) here, so that a malformed map never replaces a good one; the planner
   // is built from this grid on the builder thread.
   std::shared_ptr<const lat::GridMap> grid;
+  nav_msgs::OccupancyGrid placed;
+  std::string why;
   try {
+    if (!mapInGlobalFrame(*msg, &placed, &why)) throw std::runtime_error(why);
     grid = std::make_shared<const lat::GridMap>(
-        gridMapFromOccupancy(*msg, params_.occupancy, params_.max_map_cells));
+        gridMapFromOccupancy(placed, params_.occupancy, params_.max_map_cells));
   } catch (const std::exception& e) {
     ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
               msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(), e.what(),
               currentPlanner() ? "keeping the previous map" : "no map yet, requests get NO_MAP");
+    std::lock_guard<std::mutex> lock(planner_mutex_);
+    refused_map_reason_ = e.what();
     return;
   }
-  const std::string frame = normaliseFrame(msg->header.frame_id);
-  if (!frame.empty() && frame != params_.global_frame) {
-    ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
-             "map coordinates as '%s' coordinates",
-             frame.c_str(), params_.global_frame.c_str(), params_.global_frame.c_str());
+  if (!normaliseFrame(msg->header.frame_id).empty() && normaliseFrame(msg->header.frame_id) != params_.global_frame) {
+    ROS_INFO("amha_planner: the map is in frame '%s': its origin, transformed into '%s', is (%.3f, %.3f)",
+             msg->header.frame_id.c_str(), params_.global_frame.c_str(), placed.info.origin.position.x,
+             placed.info.origin.position.y);
   }
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
-    last_map_ = *msg;
+    // Its header keeps the frame it came in (updates name it); its origin is in the global frame.
+    last_map_ = std::move(placed);
     ++map_version_;
     unbuilt_grid_ = std::move(grid);
     unbuilt_updates_ = 0;  // the updates before it are overwritten
@@ -252,17 +294,24 @@ void PlannerServer::rebuildPlanner() {
   std::shared_ptr<lat::LatticePlanner> planner;
   if (in.grid) {
     try {
+      // A robot too large for the map, or per-map data beyond the memory cap, is refused
+      // before the work (LatticeError, SetupStopped); shutdown stops a build under way.
+      amha::SearchLimits limits;
+      limits.cancel = &stop_builds_;
+      limits.max_memory_bytes = static_cast<std::size_t>(params_.max_memory_mb * 1024.0 * 1024.0);
       planner = in.previous ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
-                            : std::make_shared<lat::LatticePlanner>(in.grid, params_.lattice);
+                            : std::make_shared<lat::LatticePlanner>(in.grid, params_.lattice, limits);
     } catch (const std::exception& e) {
       in.error = e.what();
     }
   }
   const bool incremental = in.previous != nullptr;
   in.previous = nullptr;  // see installPlanner
-  const bool have_planner = installPlanner(std::move(planner), in.version);
+  const bool have_planner = installPlanner(std::move(planner), in.version, in.full_map ? in.error : "");
   logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), have_planner,
            incremental);
+  // The replaced planner's arrays (megabytes per million cells) would otherwise stay resident.
+  releaseFreedMemory();
 }
 
 PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
@@ -303,7 +352,8 @@ PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
   return in;
 }
 
-bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, std::uint64_t version) {
+bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, std::uint64_t version,
+                                   const std::string& map_error) {
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
     build_failed_ = !planner;
@@ -318,6 +368,7 @@ bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner,
     }
     have_planner = planner_ != nullptr;
     built_version_ = version;  // a refused map counts as built: requests must not wait for it
+    if (planner_ == nullptr && !map_error.empty()) refused_map_reason_ = map_error;
   }
   // Released before the waiting requests wake (unless a running plan still holds it): the new
   // planner then holds the heuristic grids it kept from it alone, and repairs them in place.
@@ -350,7 +401,8 @@ void PlannerServer::logBuild(const BuildInput& in, double seconds, bool have_pla
           incremental ? " (rebuilt near the change only)" : "");
 }
 
-bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {
+PlannerServer::MapWait PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel,
+                                                        std::chrono::steady_clock::time_point deadline) {
   std::uint64_t wanted = 0;
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
@@ -358,11 +410,13 @@ bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {
   }
   std::unique_lock<std::mutex> lock(planner_mutex_);
   while (built_version_ < wanted) {
-    if (cancel || shutting_down_) return false;
-    // Polls too: the cancel flag and shutdown are not signalled through this condition.
-    planner_built_.wait_for(lock, std::chrono::milliseconds(50));
+    if (cancel || shutting_down_) return MapWait::kCancelled;
+    if (std::chrono::steady_clock::now() >= deadline) return MapWait::kTimeUp;
+    // onCancel notifies under planner_mutex_, so a cancel wakes this at once; the timeout only
+    // covers shutdown and the deadline.
+    planner_built_.wait_until(lock, std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(50)));
   }
-  return true;
+  return MapWait::kReady;
 }
 
 bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
@@ -440,20 +494,6 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "cancelled before planning started";
       return res;
     }
-    // Every map and update received before this request is in the planner it gets (at most
-    // the build under way and one more); it keeps that planner even if a new map arrives.
-    if (!waitForCurrentMap(cancel)) {
-      res.status = Status::CANCELLED;
-      res.message = shutting_down_ ? "the planner is shutting down"
-                                   : "cancelled while the newest map's planner was being built";
-      return res;
-    }
-    const auto planner = currentPlanner();
-    if (!planner) {
-      res.status = Status::NO_MAP;
-      res.message = "no valid map received on " + map_sub_.getTopic() + " yet";
-      return res;
-    }
     amha::PlannerConfig config;
     std::string error;
     if (!searchConfigFor(params_, r.algorithm, r.w1, r.w2, &config, &error)) {
@@ -472,13 +512,43 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)";
       return res;
     }
+    // The budget counts from here: waiting for the newest map's planner and tf use it too.
+    const auto started = std::chrono::steady_clock::now();
+    const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>(std::min(budget, 1e9)));
+    // Every map and update received before this request is in the planner it gets (at most
+    // the build under way and one more); it keeps that planner even if a new map arrives.
+    switch (waitForCurrentMap(cancel, deadline)) {
+      case MapWait::kReady:
+        break;
+      case MapWait::kCancelled:
+        res.status = Status::CANCELLED;
+        res.message = shutting_down_ ? "the planner is shutting down"
+                                     : "cancelled while the newest map's planner was being built";
+        return res;
+      case MapWait::kTimeUp:
+        res.status = Status::TIME_EXHAUSTED;
+        res.message = "time budget of " + fmt(budget, 2) + " s used up while the newest map's planner was being built";
+        return res;
+    }
+    const auto planner = currentPlanner();
+    if (!planner) {
+      std::lock_guard<std::mutex> lock(planner_mutex_);
+      res.status = Status::NO_MAP;
+      res.message = refused_map_reason_.empty()
+                        ? "no valid map received on " + map_sub_.getTopic() + " yet"
+                        : "no usable map on " + map_sub_.getTopic() + " yet: the last one was refused: " +
+                              refused_map_reason_;
+      return res;
+    }
     geometry_msgs::PoseStamped start, goal;
     if (!toGlobalFrame(r.start, true, &start, &res)) return res;
     if (!toGlobalFrame(r.goal, false, &goal, &res)) return res;
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;
-    limits.time_limit_s = budget;
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    limits.time_limit_s = std::max(0.0, budget - waited);
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params_.max_memory_mb * 1024.0 * 1024.0);
 
@@ -603,6 +673,7 @@ Plan::Response PlannerServer::runBlocking(const Request& request) {
   const bool queued = queue_->submit([this, request, id, flag, done] {
     done->set_value(execute(request, id, *flag, {}));
     releaseCancelFlag(flag);
+    releaseFreedMemory();
   });
   if (!queued) {
     releaseCancelFlag(flag);
@@ -671,39 +742,33 @@ void PlannerServer::onGoal(GoalHandle goal) {
   r.ignore_goal_heading = g->ignore_goal_heading;
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
-  auto flag = newCancelFlag();
+  auto job = std::make_shared<GoalJob>();
+  job->cancel = newCancelFlag();
+  job->request_id = id;
 
   std::lock_guard<std::mutex> lock(goals_mutex_);
-  const bool queued = queue_->submit([this, goal, r, id, flag, goal_id]() mutable {
+  const bool queued = queue_->submit([this, goal, r, id, job, goal_id]() mutable {
     { std::lock_guard<std::mutex> accepted(goals_mutex_); }  // setAccepted() has run
-    Plan::Response res = execute(r, id, *flag, [&goal](const PlanSolution& s) {
-      PlanAnytimeFeedback feedback;
-      feedback.solution = s;
-      goal.publishFeedback(feedback);
-    });
-    logOutcome("plan_anytime", res);
-    const std::uint32_t status = res.status;
-    const std::string message = res.message;
-    PlanAnytimeResult result;
-    moveResponse(std::move(res), &result);
-    const auto state = goal.getGoalStatus().status;
-    const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
-                                  state == actionlib_msgs::GoalStatus::RECALLING;
-    if (status == Status::SUCCESS) {
-      goal.setSucceeded(result, message);
-    } else if (status == Status::CANCELLED && client_cancelled) {
-      goal.setCanceled(result, message);
-    } else {
-      goal.setAborted(result, message);
-    }
-    {
-      std::lock_guard<std::mutex> done(goals_mutex_);
-      goal_cancel_flags_.erase(goal_id);
-    }
-    releaseCancelFlag(flag);
-  });
+    int queued_phase = GoalJob::kQueued;
+    if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kRunning)) {
+      Plan::Response res = execute(r, id, *job->cancel, [&goal](const PlanSolution& s) {
+        PlanAnytimeFeedback feedback;
+        feedback.solution = s;
+        goal.publishFeedback(feedback);
+      });
+      logOutcome("plan_anytime", res);
+      finishGoal(goal, std::move(res));
+      job->phase = GoalJob::kDone;
+      {
+        std::lock_guard<std::mutex> done(goals_mutex_);
+        goal_jobs_.erase(goal_id);
+      }
+    }  // else onCancel answered it while it waited
+    releaseCancelFlag(job->cancel);
+    releaseFreedMemory();
+  }, &job->ticket);
   if (!queued) {
-    releaseCancelFlag(flag);
+    releaseCancelFlag(job->cancel);
     PlanAnytimeResult busy;
     busy.request_id = id;
     busy.status = Status::BUSY;
@@ -713,14 +778,54 @@ void PlannerServer::onGoal(GoalHandle goal) {
     goal.setRejected(busy, busy.message);
     return;
   }
-  goal_cancel_flags_[goal_id] = flag;
+  goal_jobs_[goal_id] = job;
   goal.setAccepted("queued as request " + std::to_string(id));
+}
+
+void PlannerServer::finishGoal(GoalHandle& goal, Plan::Response&& res) {
+  const std::uint32_t status = res.status;
+  const std::string message = res.message;
+  PlanAnytimeResult result;
+  moveResponse(std::move(res), &result);
+  const auto state = goal.getGoalStatus().status;
+  const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
+                                state == actionlib_msgs::GoalStatus::RECALLING;
+  if (status == Status::SUCCESS) {
+    goal.setSucceeded(result, message);
+  } else if (status == Status::CANCELLED && client_cancelled) {
+    goal.setCanceled(result, message);
+  } else {
+    goal.setAborted(result, message);
+  }
 }
 
 void PlannerServer::onCancel(GoalHandle goal) {
   std::lock_guard<std::mutex> lock(goals_mutex_);
-  const auto it = goal_cancel_flags_.find(goal.getGoalID().id);
-  if (it != goal_cancel_flags_.end()) *it->second = true;
+  const auto it = goal_jobs_.find(goal.getGoalID().id);
+  if (it == goal_jobs_.end()) return;
+  const std::shared_ptr<GoalJob> job = it->second;
+  *job->cancel = true;
+  {
+    // A request waiting for the newest map's planner wakes now (waitForCurrentMap).
+    std::lock_guard<std::mutex> wake(planner_mutex_);
+    planner_built_.notify_all();
+  }
+  // Still in the queue: answered now, not when the request before it ends; its job skips.
+  int queued_phase = GoalJob::kQueued;
+  if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kDone)) {
+    // Its place in the queue goes to the next request at once (else the job, when the worker
+    // takes it, finds it done and releases the flag itself).
+    if (queue_->removeWaiting(job->ticket)) releaseCancelFlag(job->cancel);
+    Plan::Response res;
+    res.request_id = job->request_id;
+    res.status = Status::CANCELLED;
+    res.message = "cancelled while waiting in the queue: no planning was done";
+    res.path.header.frame_id = params_.global_frame;
+    res.path.header.stamp = ros::Time::now();
+    logOutcome("plan_anytime", res);
+    finishGoal(goal, std::move(res));
+    goal_jobs_.erase(it);
+  }
 }
 
 }  // namespace amha_planner
