@@ -87,8 +87,10 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/heuristic_repair_test.cpp
     test/lattice/goal_tolerance_test.cpp
     test/lattice/any_goal_heading_test.cpp
+    test/lattice/ana_star_lattice_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
+target_compile_definitions(amha_lattice_tests PRIVATE "AMHA_SOURCE_DIR=\"${CMAKE_SOURCE_DIR}\"")  # the bundled map
 
 # The codecs module stays out of processes that read no image file. No imgcodecs link here:
 # the test looks for it in /proc/self/maps.
