@@ -212,8 +212,7 @@ bool PlannerServer::mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, nav_msgs
   // The transform when the map was made (the latest one if it has no stamp): a map in a frame
   // that moves (odom) is placed where that frame was then.
   try {
-    const auto t = tf_buffer_.lookupTransform(params_.global_frame, frame, in.header.stamp,
-                                              ros::Duration(params_.tf_timeout));
+    const auto t = lookupTransform(params_.global_frame, frame, in.header.stamp, nullptr);
     geometry_msgs::PoseStamped origin, moved;
     origin.header = in.header;
     origin.pose = in.info.origin;
@@ -419,16 +418,28 @@ PlannerServer::MapWait PlannerServer::waitForCurrentMap(const std::atomic<bool>&
   return MapWait::kReady;
 }
 
+geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string& target, const std::string& source,
+                                                              const ros::Time& time, const std::atomic<bool>* cancel) {
+  // canTransform in slices instead of one wait of tf_timeout: a cancel ends the wait at once.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                           std::chrono::duration<double>(params_.tf_timeout));
+  while (!tf_buffer_.canTransform(target, source, time, ros::Duration(0.01))) {
+    if (cancel != nullptr && *cancel) throw TransformCancelled();
+    if (std::chrono::steady_clock::now() >= until) break;  // lookupTransform says why
+  }
+  return tf_buffer_.lookupTransform(target, source, time);
+}
+
 bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
-                                  geometry_msgs::PoseStamped* out, Plan::Response* res) {
+                                  geometry_msgs::PoseStamped* out, Plan::Response* res,
+                                  const std::atomic<bool>& cancel) {
   const char* what = is_start ? "start" : "goal";
   const std::string& global = params_.global_frame;
   std::string frame = normaliseFrame(in.header.frame_id);
   if (frame.empty() && is_start) {
     // The robot's current pose.
     try {
-      const auto t = tf_buffer_.lookupTransform(global, params_.robot_base_frame, ros::Time(0),
-                                                ros::Duration(params_.tf_timeout));
+      const auto t = lookupTransform(global, params_.robot_base_frame, ros::Time(0), &cancel);
       out->header = t.header;
       out->header.frame_id = global;
       out->pose.position.x = t.transform.translation.x;
@@ -462,8 +473,7 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
     return true;
   }
   try {
-    const auto t = tf_buffer_.lookupTransform(global, frame, in.header.stamp,
-                                              ros::Duration(params_.tf_timeout));
+    const auto t = lookupTransform(global, frame, in.header.stamp, &cancel);
     tf2::doTransform(in, *out, t);
   } catch (const tf2::TransformException& e) {
     res->status = Status::TF_ERROR;
@@ -542,8 +552,14 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       return res;
     }
     geometry_msgs::PoseStamped start, goal;
-    if (!toGlobalFrame(r.start, true, &start, &res)) return res;
-    if (!toGlobalFrame(r.goal, false, &goal, &res)) return res;
+    try {
+      if (!toGlobalFrame(r.start, true, &start, &res, cancel)) return res;
+      if (!toGlobalFrame(r.goal, false, &goal, &res, cancel)) return res;
+    } catch (const TransformCancelled&) {
+      res.status = Status::CANCELLED;
+      res.message = "cancelled while waiting for a transform";
+      return res;
+    }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;

@@ -118,8 +118,15 @@ class PlannerServer {
   Plan::Response execute(const Request& request, std::uint32_t id,
                          const std::atomic<bool>& cancel, const SolutionSink& sink);
   /// Resolves a request pose into the global frame (tf2); false with status and message set.
+  /// Throws TransformCancelled if `cancel` is set while it waits for a transform.
   bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
-                     geometry_msgs::PoseStamped* out, Plan::Response* res);
+                     geometry_msgs::PoseStamped* out, Plan::Response* res, const std::atomic<bool>& cancel);
+  struct TransformCancelled {};
+  /// tf2's transform target <- source at `time`, waiting up to ~tf_timeout for it; throws
+  /// tf2::TransformException if there is none, TransformCancelled if `cancel` (may be null) is
+  /// set while it waits.
+  geometry_msgs::TransformStamped lookupTransform(const std::string& target, const std::string& source,
+                                                  const ros::Time& time, const std::atomic<bool>* cancel);
 
   std::shared_ptr<amha::lattice::LatticePlanner> currentPlanner() const;
   /// After a build or a request: returns freed heap to the system once much has been freed
