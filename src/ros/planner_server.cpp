@@ -183,7 +183,9 @@ PlannerServer::~PlannerServer() {
 void PlannerServer::releaseFreedMemory() {
   if (!params_.release_freed_memory) return;
   const FreedMemory f = freed_memory_.releaseIfMuchFreed();
-  if (f.trimmed) ROS_DEBUG("amha_planner: returned freed memory to the system (%.0f MB free in the heap)", f.free_bytes / 1e6);
+  if (f.trimmed) {
+    ROS_DEBUG("amha_planner: returned freed memory to the system (%.0f MB free in the heap)", f.free_bytes / 1e6);
+  }
 }
 
 std::shared_ptr<lat::LatticePlanner> PlannerServer::currentPlanner() const {
@@ -244,7 +246,8 @@ void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
     refused_map_reason_ = e.what();
     return;
   }
-  if (!normaliseFrame(msg->header.frame_id).empty() && normaliseFrame(msg->header.frame_id) != params_.global_frame) {
+  const std::string frame = normaliseFrame(msg->header.frame_id);
+  if (!frame.empty() && frame != params_.global_frame) {
     ROS_INFO("amha_planner: the map is in frame '%s': its origin, transformed into '%s', is (%.3f, %.3f)",
              msg->header.frame_id.c_str(), params_.global_frame.c_str(), placed.info.origin.position.x,
              placed.info.origin.position.y);
@@ -413,7 +416,8 @@ PlannerServer::MapWait PlannerServer::waitForCurrentMap(const std::atomic<bool>&
     if (std::chrono::steady_clock::now() >= deadline) return MapWait::kTimeUp;
     // onCancel notifies under planner_mutex_, so a cancel wakes this at once; the timeout only
     // covers shutdown and the deadline.
-    planner_built_.wait_until(lock, std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(50)));
+    const auto poll = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+    planner_built_.wait_until(lock, std::min(deadline, poll));
   }
   return MapWait::kReady;
 }
@@ -421,8 +425,9 @@ PlannerServer::MapWait PlannerServer::waitForCurrentMap(const std::atomic<bool>&
 geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string& target, const std::string& source,
                                                               const ros::Time& time, const std::atomic<bool>* cancel) {
   // canTransform in slices instead of one wait of tf_timeout: a cancel ends the wait at once.
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                           std::chrono::duration<double>(params_.tf_timeout));
+  const auto until = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(params_.tf_timeout));
   while (!tf_buffer_.canTransform(target, source, time, ros::Duration(0.01))) {
     if (cancel != nullptr && *cancel) throw TransformCancelled();
     if (std::chrono::steady_clock::now() >= until) break;  // lookupTransform says why
@@ -522,10 +527,20 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)";
       return res;
     }
-    // The budget counts from here: waiting for the newest map's planner and tf use it too.
+    // The budget counts from here: the transforms and the wait for the newest map's planner use
+    // it too. Poses come first: their errors do not depend on the map.
     const auto started = std::chrono::steady_clock::now();
     const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                         std::chrono::duration<double>(std::min(budget, 1e9)));
+    geometry_msgs::PoseStamped start, goal;
+    try {
+      if (!toGlobalFrame(r.start, true, &start, &res, cancel)) return res;
+      if (!toGlobalFrame(r.goal, false, &goal, &res, cancel)) return res;
+    } catch (const TransformCancelled&) {
+      res.status = Status::CANCELLED;
+      res.message = "cancelled while waiting for a transform";
+      return res;
+    }
     // Every map and update received before this request is in the planner it gets (at most
     // the build under way and one more); it keeps that planner even if a new map arrives.
     switch (waitForCurrentMap(cancel, deadline)) {
@@ -538,7 +553,8 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
         return res;
       case MapWait::kTimeUp:
         res.status = Status::TIME_EXHAUSTED;
-        res.message = "time budget of " + fmt(budget, 2) + " s used up while the newest map's planner was being built";
+        res.message = "time budget of " + fmt(budget, 2) +
+                      " s used up while the newest map's planner was being built";
         return res;
     }
     const auto planner = currentPlanner();
@@ -549,15 +565,6 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
                         ? "no valid map received on " + map_sub_.getTopic() + " yet"
                         : "no usable map on " + map_sub_.getTopic() + " yet: the last one was refused: " +
                               refused_map_reason_;
-      return res;
-    }
-    geometry_msgs::PoseStamped start, goal;
-    try {
-      if (!toGlobalFrame(r.start, true, &start, &res, cancel)) return res;
-      if (!toGlobalFrame(r.goal, false, &goal, &res, cancel)) return res;
-    } catch (const TransformCancelled&) {
-      res.status = Status::CANCELLED;
-      res.message = "cancelled while waiting for a transform";
       return res;
     }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
