@@ -3,7 +3,8 @@
 docs/results/robustness.md:
     /usr/bin/python3 test/ros/soak_report.py FILE.json --command "scripts/soak 600 ..." \
         --commit abc1234 > docs/results/robustness.md
-Every figure on the page comes from the JSON; nothing is typed in by hand."""
+Every figure on the page comes from the JSON; nothing is typed in by hand, except a
+'## History' section at the end, which --keep-history copies over from the previous page."""
 import argparse
 import json
 import sys
@@ -29,6 +30,8 @@ def main():
     ap.add_argument("--command", default="scripts/soak 600 --json FILE")
     ap.add_argument("--commit", default="unknown")
     ap.add_argument("--machine", default="")
+    ap.add_argument("--keep-history", default="",
+                    help="a previous page: its '## History' section (written by hand) is copied to the end")
     args = ap.parse_args()
     d = json.load(open(args.json))
     p = []
@@ -138,6 +141,11 @@ def main():
       "in use).\n" % (d.get("heap_in_use_growth_middle_to_end_kb", 0), d.get("rss_growth_middle_to_end_kb", 0),
                      d["rss_kb_samples"]["count"], d["rss_kb_samples"]["min"] / 1024.0,
                      d["rss_kb_samples"]["max"] / 1024.0))
+    if args.keep_history:
+        old = open(args.keep_history).read()
+        at = old.find("\n## History")
+        if at >= 0:
+            w(old[at:].rstrip("\n"))
     sys.stdout.write("\n".join(p))
 
 
