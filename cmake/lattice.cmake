@@ -57,6 +57,13 @@ add_test(NAME amha_bench_replan_repairs_and_agrees
          COMMAND bash -c "out=$(\"$0\" bench replan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --updates 4 --window 60 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'not repaired: 0; unsolved: 0; first solutions that differ: 0' <<<\"$out\""
                  $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
+# Bad option values are refused with a usage error naming the option, absurd robots and coarse
+# blocks up front, and the time budget holds during the planner's setup (issue 22).
+add_test(NAME amha_plan_refusals
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_refusals_test.sh $<TARGET_FILE:amha>
+                 ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml
+                 ${CMAKE_SOURCE_DIR}/test/lattice/data/nav2_diff_8_headings.json)
+
 # Contradicting flags are refused with a usage error (exit code 2), not silently resolved.
 add_test(NAME amha_plan_refuses_both_turn_flags
          COMMAND bash -c "out=$(\"$0\" plan --map x.pgm --start 0,0,0 --goal 1,1,0 --turn-term --no-turn-term 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 2 ] && grep -q excludes <<<\"$out\""
@@ -103,8 +110,10 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/kinematic_table_test.cpp
     test/lattice/start_escape_test.cpp
     test/lattice/path_smoother_test.cpp
+    test/lattice/ana_star_lattice_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves
 target_include_directories(amha_lattice_tests SYSTEM PRIVATE ${OpenCV_INCLUDE_DIRS})
+target_compile_definitions(amha_lattice_tests PRIVATE "AMHA_SOURCE_DIR=\"${CMAKE_SOURCE_DIR}\"")  # the bundled map
 
 # The codecs module stays out of processes that read no image file. No imgcodecs link here:
 # the test looks for it in /proc/self/maps.

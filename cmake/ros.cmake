@@ -9,6 +9,8 @@ add_library(amha_ros
   src/ros/planner_params.cpp
   src/ros/plan_queue.cpp
   src/ros/latest_job_runner.cpp
+  src/ros/freed_memory.cpp
+  src/ros/plan_anytime_server.cpp
   src/ros/planner_server.cpp
   src/ros/reconfigure.cpp
 )
@@ -80,5 +82,6 @@ endfunction()
 amha_add_rostest_node(planner_rostest test/ros/planner_rostest.cpp test/ros/rostest_support.cpp)
 amha_add_rostest_node(no_map_rostest test/ros/no_map_rostest.cpp test/ros/rostest_support.cpp)
 amha_add_rostest_node(reconfigure_rostest test/ros/reconfigure_rostest.cpp test/ros/rostest_support.cpp)
+amha_add_rostest_node(action_results_rostest test/ros/action_results_rostest.cpp test/ros/rostest_support.cpp)
 add_executable(static_tf_publisher test/ros/static_tf_publisher.cpp)
 target_link_libraries(static_tf_publisher PRIVATE amha_ros)

@@ -1,8 +1,10 @@
 #include "lattice_options.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "exit_codes.h"
 
@@ -87,60 +89,101 @@ std::vector<std::array<double, 2>> parseFootprint(const std::string& text) {
 
 }  // namespace
 
-LoadedLattice loadLattice(const LatticeOptions& o) {
-  LoadedLattice out;
-  lattice::OccupancyConversion conv;
-  conv.unknown_is_free = o.unknown_free;
-  if (o.lethal_threshold != LatticeOptions::kNotGiven) {
-    const std::string& m = o.map_file;
-    const bool yaml = (m.size() >= 5 && m.compare(m.size() - 5, 5, ".yaml") == 0) ||
-                      (m.size() >= 4 && m.compare(m.size() - 4, 4, ".yml") == 0);
-    if (o.lethal_threshold < 1 || o.lethal_threshold > 100) {
-      throw std::invalid_argument("--lethal-threshold " + std::to_string(o.lethal_threshold) + " is not in 1..100");
-    }
-    if (!yaml) {
-      throw std::invalid_argument("--lethal-threshold applies to map_server .yaml maps (occupancy values); " + m +
-                                  " has cell costs of its own");
-    }
-    conv.lethal_threshold = o.lethal_threshold;
-  }
-  out.map = std::make_shared<lattice::GridMap>(
-      lattice::loadMapFile(o.map_file, o.resolution, o.upscale, conv, &out.env));
-  const std::string& f = o.map_file;
-  out.is_sbpl_env = f.size() >= 4 && f.compare(f.size() - 4, 4, ".cfg") == 0;
+namespace {
 
-  lattice::LatticeConfig& c = out.config;
-  if (!o.mprim.empty() && (o.turning_radius > 0.0 || o.no_turn_in_place)) {
-    throw std::invalid_argument("--mprim cannot be combined with the generator options (--turning-radius, --no-turn-in-place)");
+bool endsWith(const std::string& s, const char* suffix) {
+  const std::size_t n = std::char_traits<char>::length(suffix);
+  return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+bool positive(double v) { return v > 0.0 && std::isfinite(v); }
+bool nonNegative(double v) { return v >= 0.0 && std::isfinite(v); }
+
+// A given number must satisfy `ok` (NaN fails every comparison, so the checks below refuse it).
+template <class T, class Ok>
+void require(const std::optional<T>& v, Ok ok, const char* option, const char* expected) {
+  if (!v || ok(*v)) return;
+  std::ostringstream m;
+  m << option << " " << *v << ": expected " << expected;
+  throw std::invalid_argument(m.str());
+}
+
+}  // namespace
+
+LoadedLattice loadLattice(const LatticeOptions& o) {
+  // Every given value is checked before the map is read: a bad option is a usage error.
+  const bool movingai = endsWith(o.map_file, ".map");
+  if (!movingai && (o.resolution || o.upscale)) {
+    throw std::invalid_argument("--resolution and --upscale apply to Moving AI maps (.map) only; " + o.map_file +
+                                " has its own resolution");
   }
-  c.mprim_file = o.mprim;
-  if (o.turning_radius > 0.0) c.turning_radius = o.turning_radius;
-  c.num_headings = o.headings;
-  c.allow_reverse = o.reverse;
-  c.turn_in_place = !o.no_turn_in_place;
-  o.primitive.applyTo(c);
-  if (!o.footprint.empty() && o.radius >= 0.0) throw std::invalid_argument("give --footprint or --radius, not both");
-  if (!o.footprint.empty()) c.footprint = parseFootprint(o.footprint);
-  if (o.radius >= 0.0) c.robot_radius = o.radius;
-  if (out.is_sbpl_env) lattice::useSbplCostModel(out.env, c);
-  if (o.cost_penalty >= 0.0) c.cost_penalty = o.cost_penalty;
-  if (o.nominal_speed >= 0.0) c.nominal_speed = o.nominal_speed;
-  if (o.turn_time_45 >= 0.0) c.time_to_turn_45 = o.turn_time_45;
-  c.num_inadmissible = o.inadmissible;
+  const bool map_server = endsWith(o.map_file, ".yaml") || endsWith(o.map_file, ".yml");
+  if (o.unknown_free && !map_server) throw std::invalid_argument("--unknown-free applies to map_server maps (.yaml) only");
+  if (o.lethal_threshold && !map_server) {
+    throw std::invalid_argument("--lethal-threshold applies to map_server .yaml maps (occupancy values); " + o.map_file +
+                                " has cell costs of its own");
+  }
+  if (o.lethal_threshold && (*o.lethal_threshold < 1 || *o.lethal_threshold > 100)) {
+    throw std::invalid_argument("--lethal-threshold " + std::to_string(*o.lethal_threshold) + " is not in 1..100");
+  }
+  require(o.resolution, positive, "--resolution", "a positive number of metres");
+  if (o.mprim && o.mprim->empty()) {
+    throw std::invalid_argument("--mprim is empty: give an SBPL .mprim or a Nav2 lattice .json file");
+  }
+  // --reverse stays allowed: Nav2's .json files have no backward motions of their own
+  // (PrimitiveOptions::applyTo refuses it with a .mprim file).
+  if (o.mprim && (o.turning_radius || o.headings || o.no_turn_in_place)) {
+    throw std::invalid_argument("--mprim cannot be combined with the generator options (--turning-radius, --headings, "
+                                "--no-turn-in-place): the file defines the primitives");
+  }
+  require(o.turning_radius, positive, "--turning-radius", "a positive number of metres");
+  if (o.footprint && o.radius) throw std::invalid_argument("give --footprint or --radius, not both");
+  if (o.footprint && o.footprint->find_first_not_of(" \t;") == std::string::npos) {
+    throw std::invalid_argument("--footprint is empty: give a polygon \"x,y;x,y;x,y;...\" of at least 3 points");
+  }
+  require(o.radius, nonNegative, "--radius", "a number of metres >= 0 (0: a point robot)");
+  require(o.cost_penalty, nonNegative, "--cost-penalty", "a number >= 0");
+  require(o.nominal_speed, positive, "--nominal-speed", "a positive speed in m/s");
+  require(o.turn_time_45, nonNegative, "--turn-time-45", "a number of seconds >= 0");
+  require(o.inadmissible, [](int k) { return k >= 0 && k <= 3; }, "--inadmissible", "0, 1, 2 or 3");
   if (o.anchor != "euclidean" && o.anchor != "grid" && o.anchor != "coarse") {
     throw std::invalid_argument("--anchor must be euclidean, grid or coarse, not '" + o.anchor + "'");
   }
+  if (o.coarse_block && o.anchor != "coarse") throw std::invalid_argument("--coarse-block applies to --anchor coarse only");
+  require(o.coarse_block, [](int k) { return k >= 0 && k <= lattice::kMaxCoarseBlock; }, "--coarse-block",
+          "cells per block side in 0..1024 (0: automatic)");
+  require(o.kinematic_radius, nonNegative, "--kinematic-radius", "a number of metres >= 0 (0: no table)");
+
+  LoadedLattice out;
+  lattice::OccupancyConversion conv;
+  conv.unknown_is_free = o.unknown_free;
+  if (o.lethal_threshold) conv.lethal_threshold = *o.lethal_threshold;
+  out.map = std::make_shared<lattice::GridMap>(
+      lattice::loadMapFile(o.map_file, o.resolution.value_or(0.1), o.upscale.value_or(1), conv, &out.env));
+  out.is_sbpl_env = endsWith(o.map_file, ".cfg");
+
+  lattice::LatticeConfig& c = out.config;
+  if (o.mprim) c.mprim_file = *o.mprim;
+  if (o.turning_radius) c.turning_radius = *o.turning_radius;
+  if (o.headings) c.num_headings = *o.headings;
+  c.allow_reverse = o.reverse;
+  c.turn_in_place = !o.no_turn_in_place;
+  o.primitive.applyTo(c);
+  if (o.footprint) c.footprint = parseFootprint(*o.footprint);
+  if (o.radius) c.robot_radius = *o.radius;
+  if (out.is_sbpl_env) lattice::useSbplCostModel(out.env, c);
+  if (o.cost_penalty) c.cost_penalty = *o.cost_penalty;
+  if (o.nominal_speed) c.nominal_speed = *o.nominal_speed;
+  if (o.turn_time_45) c.time_to_turn_45 = *o.turn_time_45;
+  if (o.inadmissible) c.num_inadmissible = *o.inadmissible;
   c.grid_anchor = o.anchor != "euclidean";
   c.coarse_anchor = o.anchor == "coarse";
-  c.coarse_block = o.coarse_block;
-  c.anchor_connectivity = o.anchor_connectivity;
-  c.inadmissible = o.inadmissible_kind == "paper" ? lattice::LatticeConfig::Inadmissible::kPaper
-                                                  : lattice::LatticeConfig::Inadmissible::kKinematic;
-  if (o.kinematic_radius) {
-    if (!std::isfinite(*o.kinematic_radius) || *o.kinematic_radius < 0.0) {
-      throw std::invalid_argument("--kinematic-radius must be a finite number >= 0 (metres)");
-    }
-    c.kinematic_radius = *o.kinematic_radius;
+  if (o.coarse_block) c.coarse_block = *o.coarse_block;
+  if (o.kinematic_radius) c.kinematic_radius = *o.kinematic_radius;
+  if (o.anchor_connectivity) c.anchor_connectivity = *o.anchor_connectivity;
+  if (o.inadmissible_kind) {
+    c.inadmissible = *o.inadmissible_kind == "paper" ? lattice::LatticeConfig::Inadmissible::kPaper
+                                                     : lattice::LatticeConfig::Inadmissible::kKinematic;
   }
   c.anchor_turn_term = o.turn_term;  // --no-turn-term is the default (the two exclude each other)
   c.backward_search = o.backward;

@@ -1,5 +1,7 @@
 // Command-line options shared by `amha plan` and `amha bench lattice`: the map, the robot and
-// its motion model, turned into a GridMap and a LatticeConfig.
+// its motion model, turned into a GridMap and a LatticeConfig. An option not given is empty
+// (std::nullopt) and the library's default applies; a value given is used or refused, never
+// replaced by a default.
 #pragma once
 
 #include <limits>
@@ -18,25 +20,24 @@ namespace cli {
 
 struct LatticeOptions {
   std::string map_file;
-  double resolution = 0.1;  // Moving AI maps
-  int upscale = 1;
+  std::optional<double> resolution;  // Moving AI maps only (default 0.1)
+  std::optional<int> upscale;        // Moving AI maps only (default 1)
   bool unknown_free = false;
-  int lethal_threshold = kNotGiven;  // map_server maps: occupancy >= this is lethal (65)
-  static constexpr int kNotGiven = std::numeric_limits<int>::min();
-  std::string mprim;
-  double turning_radius = 0.0;  // 0: not given
-  int headings = 16;
+  std::optional<int> lethal_threshold;  // map_server maps (.yaml) only: occupancy >= this is lethal (65)
+  std::optional<std::string> mprim;
+  std::optional<double> turning_radius;
+  std::optional<int> headings;
   bool reverse = false;
   bool no_turn_in_place = false;
-  std::string footprint;
-  double radius = -1.0;  // < 0: not given
-  double cost_penalty = -1.0, nominal_speed = -1.0, turn_time_45 = -1.0;  // < 0: default
-  int inadmissible = 3;
+  std::optional<std::string> footprint;
+  std::optional<double> radius;
+  std::optional<double> cost_penalty, nominal_speed, turn_time_45;
+  std::optional<int> inadmissible;
   std::string anchor = "coarse";
-  int coarse_block = 0;
+  std::optional<int> coarse_block;
   std::optional<double> kinematic_radius;
-  int anchor_connectivity = 16;
-  std::string inadmissible_kind = "kinematic";
+  std::optional<int> anchor_connectivity;
+  std::optional<std::string> inadmissible_kind;
   bool backward = false;
   bool turn_term = false;  // --no-turn-term, kept for old scripts, only restates the default
   PrimitiveOptions primitive;  // --primitive-generator, --motion-model, --reverse-penalty
@@ -52,7 +53,8 @@ struct LoadedLattice {
 };
 
 /// Loads the map and builds the configuration. Throws LatticeError (bad map, primitives or
-/// robot) or std::invalid_argument (contradictory or malformed options).
+/// robot) or std::invalid_argument (contradictory, malformed or out-of-range options, naming
+/// the option and the value).
 LoadedLattice loadLattice(const LatticeOptions& o);
 
 /// "x,y,theta" -> pose; throws std::invalid_argument naming `what`.

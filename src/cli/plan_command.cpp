@@ -1,6 +1,8 @@
 // `amha plan`: plan on a map with the lattice planner, printing every improved solution.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 
@@ -15,6 +17,7 @@
 #include "path_metrics.h"
 #include "run_json.h"
 #include "schedule_option.h"
+#include "weight_options.h"
 
 namespace amha {
 namespace cli {
@@ -28,7 +31,7 @@ int planMain(int argc, char** argv) {
   lo.addTo(app);
   std::string start_text, goal_text, algorithm_name = "amha", json_path, image_path;
   double time_limit = 10.0, goal_tolerance = 0.0;
-  double w1 = NAN, w2 = NAN, dw1 = NAN, dw2 = NAN, eps = NAN;
+  std::optional<double> w1, w2, dw1, dw2, eps;
   QueueSchedule schedule = QueueSchedule::kRoundRobin;
   app.add_option("--start", start_text, "start pose x,y,theta (m, m, rad; .cfg maps: the file's start)");
   app.add_option("--goal", goal_text, "goal pose x,y,theta (.cfg maps: the file's end)");
@@ -47,26 +50,29 @@ int planMain(int argc, char** argv) {
                "end at the goal's position with whichever heading is cheapest (its own is ignored)");
   app.add_option("--algorithm", algorithm_name, "amha | mha | ara | ana | wastar | astar (default amha)");
   app.add_option("--time-limit", time_limit, "seconds, heuristic computation included (default 10)");
-  app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar)");
-  app.add_option("--w2", w2, "initial w2 (amha/mha)");
-  app.add_option("--dw1", dw1, "decrement of w1 per iteration");
-  app.add_option("--dw2", dw2, "decrement of w2 per iteration");
+  app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar), in [1, 1e6]")->check(weightRange());
+  app.add_option("--w2", w2, "initial w2 (amha/mha), in [1, 1e6]")->check(weightRange());
+  app.add_option("--dw1", dw1, "decrement of w1 per iteration, in [0, 1e6]")->check(decrementRange());
+  app.add_option("--dw2", dw2, "decrement of w2 per iteration, in [0, 1e6]")->check(decrementRange());
   cli::addScheduleOption(app, &schedule);
-  std::string weights_name;
-  double certified_ratio = NAN, certified_split = NAN, final_gap = NAN;
+  std::optional<std::string> weights_name;
+  std::optional<double> certified_ratio, certified_split, final_gap;
   app.add_option("--weights", weights_name,
                  "anytime weight schedule of amha/ara: certified (from the last certified bound) or decrement "
                  "(the paper's: w -= dw)");
   app.add_option("--certified-ratio", certified_ratio, "certified schedule: next bound = 1 + ratio x (c - 1)");
   app.add_option("--certified-split", certified_split, "certified schedule: w1 = bound^split, w2 = bound / w1");
   app.add_option("--final-gap", final_gap, "certified schedule: prove optimality once c <= 1 + gap");
-  double stall_expansions = NAN, stall_w1 = NAN;
+  std::optional<double> stall_expansions, stall_w1;
   app.add_option("--stall-expansions", stall_expansions,
                  "amha/ara: after this many expansions without a path, go on with w1 = --stall-w1 (0: never)");
-  app.add_option("--stall-w1", stall_w1, "amha/ara: the w1 a stalled first iteration goes on with");
-  bool publish_within = false;
-  app.add_flag("--publish-within", publish_within, "publish cheaper paths as soon as an iteration finds them");
-  app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1)");
+  app.add_option("--stall-w1", stall_w1, "amha/ara: the w1 a stalled first iteration goes on with, in [1, 1e6]")
+      ->check(weightRange());
+  std::optional<bool> publish_within;
+  app.add_flag("--publish-within", publish_within,
+               "publish cheaper paths as soon as an iteration finds them (the default for amha; "
+               "--publish-within=false: only at the end of each iteration)");
+  app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1), in [1, 1e6]")->check(weightRange());
   app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
   app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
   bool smooth = false;
@@ -85,32 +91,31 @@ int planMain(int argc, char** argv) {
     return kExitUsage;
   }
   PlannerConfig pc = lattice::defaultPlannerConfig(algorithm);
-  if (!std::isnan(eps) && !std::isnan(w1)) {
+  if (eps && w1) {
     std::cerr << "amha plan: give --eps or --w1, not both\n";
     return kExitUsage;
   }
-  if (!std::isnan(eps)) pc.w1 = eps;
-  if (!std::isnan(w1)) pc.w1 = w1;
-  if (!std::isnan(w2)) pc.w2 = w2;
-  if (!std::isnan(dw1)) pc.dw1 = dw1;
-  if (!std::isnan(dw2)) pc.dw2 = dw2;
+  pc.w1 = eps.value_or(w1.value_or(pc.w1));
+  pc.w2 = w2.value_or(pc.w2);
+  pc.dw1 = dw1.value_or(pc.dw1);
+  pc.dw2 = dw2.value_or(pc.dw2);
   pc.schedule = schedule;
-  if (!weights_name.empty() && !parseWeightSchedule(weights_name, &pc.weight_schedule)) {
-    std::cerr << "amha plan: --weights must be certified or decrement, not '" << weights_name << "'\n";
+  if (weights_name && !parseWeightSchedule(*weights_name, &pc.weight_schedule)) {
+    std::cerr << "amha plan: --weights must be certified or decrement, not '" << *weights_name << "'\n";
     return kExitUsage;
   }
-  if (!std::isnan(certified_ratio)) pc.certified_ratio = certified_ratio;
-  if (!std::isnan(certified_split)) pc.certified_split = certified_split;
-  if (!std::isnan(final_gap)) pc.final_gap = final_gap;
-  if (publish_within) pc.publish_within_iterations = true;
-  if (!std::isnan(stall_expansions)) {
-    if (!(stall_expansions >= 0.0 && stall_expansions <= 1e15)) {
-      std::cerr << "amha plan: --stall-expansions must be a number of expansions >= 0\n";
+  pc.certified_ratio = certified_ratio.value_or(pc.certified_ratio);
+  pc.certified_split = certified_split.value_or(pc.certified_split);
+  pc.final_gap = final_gap.value_or(pc.final_gap);
+  pc.publish_within_iterations = publish_within.value_or(pc.publish_within_iterations);
+  if (stall_expansions) {
+    if (!(*stall_expansions >= 0.0 && *stall_expansions <= 1e15)) {
+      std::cerr << "amha plan: --stall-expansions " << *stall_expansions << ": expected a number of expansions in [0, 1e15]\n";
       return kExitUsage;
     }
-    pc.stall_expansions = static_cast<std::uint64_t>(stall_expansions);
+    pc.stall_expansions = static_cast<std::uint64_t>(*stall_expansions);
   }
-  if (!std::isnan(stall_w1)) pc.stall_w1 = stall_w1;
+  pc.stall_w1 = stall_w1.value_or(pc.stall_w1);
   try {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {
@@ -133,6 +138,9 @@ int planMain(int argc, char** argv) {
     std::cerr << "amha plan: --time-limit must be positive\n";
     return kExitUsage;
   }
+  // The budget covers everything: the planner's setup, the heuristic grids and the search.
+  SearchLimits limits;
+  limits.time_limit_s = time_limit;
 
   LoadedLattice loaded;
   lattice::Pose2D start, goal;
@@ -149,13 +157,17 @@ int planMain(int argc, char** argv) {
     start = start_text.empty() ? loaded.env.start : parsePose(start_text, "--start");
     goal = goal_text.empty() ? loaded.env.goal : parsePose(goal_text, "--goal");
     const auto t0 = std::chrono::steady_clock::now();
-    planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config));
+    planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config, limits));
     setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The kinematic tables share the budget that the setup left; the search gets the rest.
     const auto t1 = std::chrono::steady_clock::now();
-    SearchLimits table_limits;
-    table_limits.time_limit_s = time_limit;
+    SearchLimits table_limits = limits;
+    table_limits.time_limit_s = std::max(0.0, time_limit - setup_s);
     planner->prepareKinematicTables(table_limits);
     table_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  } catch (const lattice::SetupStopped& e) {
+    std::printf("status %s: 0 solutions (%s)\n", statusName(e.status()), e.what());
+    return kExitNoSolution;
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha plan: " << e.what() << "\n";
     return exitCodeFor(e);
@@ -171,8 +183,7 @@ int planMain(int argc, char** argv) {
   std::printf("start (%.3f, %.3f, %.3f)  goal (%.3f, %.3f, %.3f)\n", start.x, start.y, start.theta, goal.x, goal.y,
               goal.theta);
 
-  SearchLimits limits;
-  limits.time_limit_s = time_limit;
+  limits.time_limit_s = std::max(0.0, time_limit - setup_s - table_s);
   int count = 0;
   std::unique_ptr<lattice::PathSmoother> smoother;
   std::unique_ptr<lattice::SmoothedStream> stream;

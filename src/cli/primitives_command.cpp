@@ -83,7 +83,7 @@ int primitivesMain(int argc, char** argv) {
       }
       set = lattice::primitivesFor(c, 0.0);
     } else {
-      o.num_headings = lo.headings;
+      o.num_headings = lo.headings.value_or(o.num_headings);
       o.allow_reverse = lo.reverse;
       o.turn_in_place = !lo.no_turn_in_place;
       o.generator = c.primitive_generator;

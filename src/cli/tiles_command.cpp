@@ -25,6 +25,7 @@
 #include "run_json.h"
 #include "schedule_option.h"
 #include "tiles_report.h"
+#include "weight_options.h"
 
 namespace amha {
 namespace cli {
@@ -129,13 +130,13 @@ int runTiles(int argc, char** argv) {
                  "CPU clock of the searching thread, for fair numbers on a shared machine")
       ->check(CLI::IsMember({"wall", "cpu"}));
   app.add_option("--max-expansions", o.max_expansions, "expansions per run (default: no cap)");
-  app.add_option("--w1", o.w1, "A-MHA*/MHA* initial w1 (default 5)");
-  app.add_option("--w2", o.w2, "A-MHA*/MHA* initial w2 (default 5)");
-  app.add_option("--dw1", o.dw1, "A-MHA* decrement of w1 per iteration (default 0.5)");
-  app.add_option("--dw2", o.dw2, "A-MHA* decrement of w2 per iteration (default 0.5)");
-  app.add_option("--eps", o.eps, "ARA* initial epsilon (default 25)");
-  app.add_option("--deps", o.deps, "ARA* decrement of epsilon per iteration (default 3)");
-  app.add_option("--weight", o.weight, "weighted A* weight (default 5)");
+  app.add_option("--w1", o.w1, "A-MHA*/MHA* initial w1 in [1, 1e6] (default 5)")->check(weightRange());
+  app.add_option("--w2", o.w2, "A-MHA*/MHA* initial w2 in [1, 1e6] (default 5)")->check(weightRange());
+  app.add_option("--dw1", o.dw1, "A-MHA* decrement of w1 per iteration in [0, 1e6] (default 0.5)")->check(decrementRange());
+  app.add_option("--dw2", o.dw2, "A-MHA* decrement of w2 per iteration in [0, 1e6] (default 0.5)")->check(decrementRange());
+  app.add_option("--eps", o.eps, "ARA* initial epsilon in [1, 1e6] (default 25)")->check(weightRange());
+  app.add_option("--deps", o.deps, "ARA* decrement of epsilon per iteration in [0, 1e6] (default 3)")->check(decrementRange());
+  app.add_option("--weight", o.weight, "weighted A* weight in [1, 1e6] (default 5)")->check(weightRange());
   app.add_option("--heuristics", o.heuristics, "inadmissible heuristics for A-MHA*/MHA* (default 4)")
       ->check(CLI::Range(0, 64));
   app.add_option("--heuristic-seed", o.heuristic_seed, "seed of their random weights (default 1)");

@@ -41,8 +41,18 @@ void validateMap(const GridMap& m) {
   }
 }
 
-void validateConfig(const LatticeConfig& c) {
+void validateConfig(const LatticeConfig& c, double resolution) {
   const auto kind = LatticeError::Kind::kConfig;
+  if (c.mprim_file.empty() && !(c.turning_radius >= kMinTurningRadiusCells * resolution && std::isfinite(c.turning_radius))) {
+    fail(kind, "turning radius " + str(c.turning_radius) + " m is below a hundredth of a cell (" +
+                   str(kMinTurningRadiusCells * resolution) + " m on this map of " + str(resolution) +
+                   " m cells) or not finite: the primitive generator cannot make a tighter arc, and any radius "
+                   "under a cell gives the same primitives (the tightest turn ends on a neighbouring cell)");
+  }
+  if (c.coarse_block < 0 || c.coarse_block > kMaxCoarseBlock) {
+    fail(kind, "coarse_block " + std::to_string(c.coarse_block) + " is not in 0.." + std::to_string(kMaxCoarseBlock) +
+                   " (cells per block side; 0: automatic)");
+  }
   if (c.num_inadmissible < 0 || c.num_inadmissible > 3) fail(kind, "num_inadmissible " + std::to_string(c.num_inadmissible) + " is not in 0..3");
   if (!std::isfinite(c.cost_penalty) || c.cost_penalty < 0.0 || c.cost_penalty > 10000.0) fail(kind, "cost_penalty " + str(c.cost_penalty) + " is not in [0, 10000]");
   if (!(c.nominal_speed > 0.0) || !std::isfinite(c.nominal_speed)) fail(kind, "nominal_speed " + str(c.nominal_speed) + " must be positive");
@@ -56,22 +66,40 @@ void validateConfig(const LatticeConfig& c) {
   }
 }
 
+/// Bytes per map cell of the per-map data beyond the sweeps (clearance, openings, the distance
+/// transforms' temporaries and the heuristic tables' levels), for the memory estimate.
+constexpr std::size_t kSetupBytesPerCell = 16;
+/// Bytes per swept cell: its linear offset and its (dx, dy).
+constexpr std::size_t kBytesPerSweptCell = sizeof(std::int64_t) + sizeof(CellOffset);
+
 }  // namespace
 
-LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config)
+void throwIfStopped(const GridStop* stop, const char* during) {
+  if (stop == nullptr || !stop->requested()) return;
+  const bool cancelled = stop->cancel != nullptr && stop->cancel->load();
+  throw SetupStopped(cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit,
+                     std::string(cancelled ? "cancelled" : "time budget used up") + " while building the planner (" +
+                         during + ")");
+}
+
+LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config,
+                           const GraphLimits& limits)
     : map_(std::move(map)), config_(config) {
   if (!map_) fail(LatticeError::Kind::kMap, "map: null");
   validateMap(*map_);
-  validateConfig(config_);
+  validateConfig(config_, map_->resolution);
   primitives_ = primitivesFor(config_, map_->resolution);
   footprint_ = RobotFootprint::fromConfig(config_);
+  checkRobotSize(limits);
   penalty_q_.resize(256);
   for (int c = 0; c < 256; ++c) {
     const double q = 65536.0 * config_.cost_penalty * std::min(c, 252) / 252.0;
     penalty_q_[c] = static_cast<std::int64_t>(std::ceil(q - 1e-9));
   }
-  buildActions();
+  buildActions(limits.stop);
+  throwIfStopped(limits.stop, "clearance and openings");
   computeClearanceAndOpenings(CellRect{0, 0, map_->width, map_->height});
+  throwIfStopped(limits.stop, "clearance and openings");
   computeAnchorScales();
   if (config_.grid_anchor && config_.kinematic_radius > 0.0 && euclid_per_cell_ > 0.0) {
     std::vector<KinematicMove> moves;
@@ -82,6 +110,47 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
     const int radius = std::min(LatticeConfig::kMaxKinematicCells,
                                 static_cast<int>(std::ceil(config_.kinematic_radius / map_->resolution - 1e-9)));
     kinematic_ = KinematicTables::shared(moves, primitives_.heading_angles, euclid_per_cell_, std::max(1, radius));
+  }
+}
+
+void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
+  const GridMap& m = *map_;
+  const double res = m.resolution;
+  // A round robot's inscribed radius is its radius (footprint_ holds the 16-gon around it).
+  const double inscribed = config_.footprint.empty() ? config_.robot_radius : footprint_.inscribed_radius;
+  const double side = std::min(m.width, m.height) * res;
+  if (2.0 * inscribed > side) {
+    fail(LatticeError::Kind::kRobot, "robot footprint: its inscribed circle (radius " + str(inscribed) +
+                                         " m) is wider than the map (" + str(m.width * res) + " x " +
+                                         str(m.height * res) + " m): no pose on it is collision-free");
+  }
+  // The cells a footprint sweeps lie within its circumscribed radius of the centre's path:
+  // at most a disc plus a band along the path (cells: the radius grown by a cell's diagonal).
+  double swept = 0.0;
+  if (!footprint_.polygon.empty()) {
+    const double r = footprint_.circumscribed_radius / res + 1.5;
+    for (const MotionPrimitive& p : primitives_.primitives) {
+      double length = 0.0;
+      for (std::size_t k = 1; k < p.poses.size(); ++k) {
+        length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y) / res;
+      }
+      swept += M_PI * r * r + 2.0 * r * length;
+    }
+  }
+  if (swept > static_cast<double>(kMaxSweptCells)) {
+    fail(LatticeError::Kind::kRobot,
+         "robot footprint: sweeping it along the " + std::to_string(primitives_.primitives.size()) +
+             " primitives would touch up to " + std::to_string(static_cast<long long>(swept)) + " cells (limit " +
+             std::to_string(kMaxSweptCells) + "): its circumscribed radius of " +
+             str(footprint_.circumscribed_radius) + " m is " + str(footprint_.circumscribed_radius / res) +
+             " cells of " + str(res) + " m; use a coarser map or a smaller robot");
+  }
+  const double bytes = swept * kBytesPerSweptCell + static_cast<double>(m.cost.size()) * kSetupBytesPerCell;
+  if (bytes > static_cast<double>(limits.max_bytes)) {
+    throw SetupStopped(SearchStatus::kMemoryLimit,
+                       "the planner's per-map data (footprint sweeps, clearance, openings, heuristic tables) would "
+                       "take about " + str(std::ceil(bytes / 1e6)) + " MB, above the memory cap of " +
+                           str(std::floor(static_cast<double>(limits.max_bytes) / 1e6)) + " MB");
   }
 }
 
@@ -126,7 +195,7 @@ void LatticeGraph::linkActionsInto() {
   for (const LatticeAction& a : actions_) actions_into_[a.end_heading].push_back(&a);
 }
 
-void LatticeGraph::buildActions() {
+void LatticeGraph::buildActions(const GridStop* stop) {
   const double res = map_->resolution;
   const int n = primitives_.num_headings;
   const double omega = config_.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.time_to_turn_45 : 0.0;
@@ -135,6 +204,7 @@ void LatticeGraph::buildActions() {
     action_index_[h] = actions_.size();
     const auto r = primitives_.range(h);
     for (std::size_t i = r.first; i < r.second; ++i) {
+      throwIfStopped(stop, "footprint sweeps");
       const MotionPrimitive& p = primitives_.primitives[i];
       LatticeAction a;
       a.dx = p.end_dx;

@@ -194,10 +194,31 @@ struct LatticePlanner::Impl {
   }
 };
 
+namespace {
+
+/// The cancel flag and the deadline (limits' time budget from `start`) of `limits`.
+GridStop stopFor(const SearchLimits& limits, std::chrono::steady_clock::time_point start) {
+  GridStop stop;
+  stop.cancel = limits.cancel;
+  if (limits.time_limit_s < 1e9) {
+    stop.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
+  }
+  return stop;
+}
+
+}  // namespace
+
 LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config)
+    : LatticePlanner(std::move(map), config, SearchLimits()) {}
+
+LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config,
+                               const SearchLimits& limits)
     : impl_(new Impl) {
+  const GridStop stop = stopFor(limits, std::chrono::steady_clock::now());
   impl_->map = map;
-  impl_->graph.reset(new LatticeGraph(std::move(map), config));
+  impl_->graph.reset(new LatticeGraph(std::move(map), config, GraphLimits{&stop, limits.max_memory_bytes}));
+  throwIfStopped(&stop, "heuristic tables");
   impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
 }
 
@@ -419,12 +440,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
   // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
   // a big map).
-  GridStop stop;
-  stop.cancel = limits.cancel;
-  if (limits.time_limit_s < 1e9) {
-    stop.deadline = call_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                     std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
-  }
+  const GridStop stop = stopFor(limits, call_start);
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   std::unique_ptr<StartEscape> escape;
@@ -445,6 +461,14 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   const LatticeState from = backward ? t : s, to = backward ? s : t;
   // A goal of any heading has its own coarse distances (to the nearest of its headings).
   const int table_heading = any_heading && !backward ? kAnyHeading : to.heading;
+  // The grids belong to the request's memory too: 4 bytes a padded cell for each grid it needs.
+  const std::size_t padded = static_cast<std::size_t>(g.width() + 4) * (g.height() + 4);
+  std::size_t grid_count = g.config().grid_anchor ? 1 : 0;
+  if (uses_inadmissible) grid_count += static_cast<std::size_t>(g.config().num_inadmissible);
+  if (grid_count * padded * sizeof(std::uint32_t) > limits.max_memory_bytes) {
+    result.search.status = SearchStatus::kMemoryLimit;
+    return result;
+  }
   auto grids = impl_->heuristicsFor(to.x, to.y, table_heading, uses_inadmissible, backward, stop,
                                     &result.heuristic_seconds, &result.heuristic_source);
   if (!grids) {

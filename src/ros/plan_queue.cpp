@@ -17,14 +17,28 @@ PlanQueue::~PlanQueue() {
   worker_.join();
 }
 
-bool PlanQueue::submit(std::function<void()> job) {
+bool PlanQueue::submit(std::function<void()> job, std::uint64_t* ticket) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (stopping_ || jobs_.size() >= max_waiting_ + (running_ ? 0 : 1)) return false;
-    jobs_.push_back(std::move(job));
+    if (ticket != nullptr) *ticket = next_ticket_;
+    jobs_.emplace_back(next_ticket_++, std::move(job));
   }
   wake_.notify_all();
   return true;
+}
+
+bool PlanQueue::removeWaiting(std::uint64_t ticket) {
+  std::function<void()> dropped;  // destroyed outside the lock
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto it = jobs_.begin(); it != jobs_.end(); ++it) {
+    if (it->first == ticket) {
+      dropped = std::move(it->second);
+      jobs_.erase(it);
+      return true;
+    }
+  }
+  return false;
 }
 
 std::size_t PlanQueue::waiting() const {
@@ -42,7 +56,7 @@ void PlanQueue::work() {
   for (;;) {
     wake_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
     if (jobs_.empty()) return;  // stopping and drained
-    std::function<void()> job = std::move(jobs_.front());
+    std::function<void()> job = std::move(jobs_.front().second);
     jobs_.pop_front();
     running_ = true;
     lock.unlock();

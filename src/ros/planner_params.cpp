@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 #include <stdexcept>
 
 #include <XmlRpcValue.h>
@@ -128,7 +129,7 @@ std::vector<std::array<double, 2>> getFootprint(const ros::NodeHandle& pnh) {
   return out;
 }
 
-bool validWeight(double w) { return std::isfinite(w) && w >= 1.0; }
+bool validWeight(double w) { return w >= 1.0 && w <= amha::kMaxWeight; }  // NaN fails both
 
 }  // namespace
 
@@ -147,10 +148,13 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   auto& l = p.lattice;
   // Robot.
   l.footprint = getFootprint(pnh);
-  l.robot_radius = getDouble(pnh, "robot_radius", l.robot_radius, 1e-3, 100.0);
+  // Robots of a few metres at most: a larger one (a building-sized disc) only fits a map of
+  // kilometres, and its sweeps are refused on fine maps anyway (LatticeGraph, kMaxSweptCells).
+  // The map decides the rest when it comes: a robot wider than it is refused, and NO_MAP says so.
+  l.robot_radius = getDouble(pnh, "robot_radius", l.robot_radius, 1e-3, kMaxRobotRadius);
   // Motion primitives: a file, or generated.
   l.mprim_file = getString(pnh, "mprim_file", "");
-  l.turning_radius = getDouble(pnh, "turning_radius", l.turning_radius, 0.0, 1000.0);
+  l.turning_radius = getDouble(pnh, "turning_radius", l.turning_radius, 1e-3, kMaxTurningRadius);
   l.num_headings = getInt(pnh, "num_headings", l.num_headings, 8, 1024);
   if (l.num_headings % 8 != 0) bad(pnh, "num_headings", "must be a multiple of 8");
   l.allow_reverse = getBool(pnh, "allow_reverse", l.allow_reverse);
@@ -172,7 +176,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.time_to_turn_45, 0.0, 1000.0);
   l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
   l.coarse_anchor = getBool(pnh, "coarse_anchor", l.coarse_anchor);
-  l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, 1024);
+  l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, amha::lattice::kMaxCoarseBlock);
   l.kinematic_radius = getDouble(pnh, "kinematic_radius", l.kinematic_radius, 0.0, 100.0);
   l.anchor_connectivity = getInt(pnh, "anchor_connectivity", l.anchor_connectivity, 8, 16);
   if (l.anchor_connectivity != 8 && l.anchor_connectivity != 16) bad(pnh, "anchor_connectivity", "must be 8 or 16");
@@ -197,16 +201,16 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   if (!amha::parseAlgorithm(name, &p.algorithm)) {
     bad(pnh, "algorithm", "unknown algorithm '" + name + "' (amha, mha, ara, ana, wastar, astar)");
   }
-  p.w1 = getDouble(pnh, "w1", -1, 1.0, 1e6);
-  p.w2 = getDouble(pnh, "w2", -1, 1.0, 1e6);
-  p.dw1 = getDouble(pnh, "dw1", -1, 0.0, 1e6);
-  p.dw2 = getDouble(pnh, "dw2", -1, 0.0, 1e6);
-  p.eps = getDouble(pnh, "eps", -1, 1.0, 1e6);
+  p.w1 = getDouble(pnh, "w1", -1, 1.0, amha::kMaxWeight);
+  p.w2 = getDouble(pnh, "w2", -1, 1.0, amha::kMaxWeight);
+  p.dw1 = getDouble(pnh, "dw1", -1, 0.0, amha::kMaxWeight);
+  p.dw2 = getDouble(pnh, "dw2", -1, 0.0, amha::kMaxWeight);
+  p.eps = getDouble(pnh, "eps", -1, 1.0, amha::kMaxWeight);
   const std::string schedule = getString(pnh, "queue_schedule", amha::scheduleName(p.queue_schedule));
   if (!amha::parseSchedule(schedule, &p.queue_schedule)) {
     bad(pnh, "queue_schedule", "unknown schedule '" + schedule + "' (rr, dts)");
   }
-  p.eps_decrement = getDouble(pnh, "eps_decrement", -1, 0.0, 1e6);
+  p.eps_decrement = getDouble(pnh, "eps_decrement", -1, 0.0, amha::kMaxWeight);
   const std::string weights = getString(pnh, "weight_schedule", amha::weightScheduleName(p.weight_schedule));
   if (!amha::parseWeightSchedule(weights, &p.weight_schedule)) {
     bad(pnh, "weight_schedule", "unknown schedule '" + weights + "' (certified, decrement)");
@@ -216,7 +220,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.final_gap = getDouble(pnh, "final_gap", p.final_gap, 0.0, 1e3);
   p.publish_within_iterations = getBool(pnh, "publish_within_iterations", p.publish_within_iterations);
   p.stall_expansions = getInt(pnh, "stall_expansions", p.stall_expansions, 0, 1 << 30);
-  p.stall_w1 = getDouble(pnh, "stall_w1", p.stall_w1, 1.0, 1e6);
+  p.stall_w1 = getDouble(pnh, "stall_w1", p.stall_w1, 1.0, amha::kMaxWeight);
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
@@ -231,6 +235,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.tf_timeout = getDouble(pnh, "tf_timeout", p.tf_timeout, 0.0, 60.0);
   p.max_queued_requests = getInt(pnh, "max_queued_requests", p.max_queued_requests, 0, 64);
   p.marker_spacing = getDouble(pnh, "marker_spacing", p.marker_spacing, 0.01, 1e3);
+  p.release_freed_memory = getBool(pnh, "release_freed_memory", p.release_freed_memory);
   // Check the search configuration once, so a bad weight fails at start-up, not per request.
   amha::PlannerConfig check;
   std::string error;
@@ -245,13 +250,13 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
     *error = "unknown algorithm '" + algorithm_name + "' (amha, mha, ara, ana, wastar, astar)";
     return false;
   }
-  if (w1 != 0.0 && !validWeight(w1)) {
-    *error = "w1 must be finite and >= 1 (0 keeps the configured value)";
-    return false;
-  }
-  if (w2 != 0.0 && !validWeight(w2)) {
-    *error = "w2 must be finite and >= 1 (0 keeps the configured value)";
-    return false;
+  for (const auto& [name, w] : {std::pair<const char*, double>{"w1", w1}, {"w2", w2}}) {
+    if (w != 0.0 && !validWeight(w)) {
+      std::ostringstream s;
+      s << name << " " << w << " is outside [1, " << amha::kMaxWeight << "] (0 keeps the configured value)";
+      *error = s.str();
+      return false;
+    }
   }
   amha::PlannerConfig c = amha::lattice::defaultPlannerConfig(algorithm);
   if (algorithm == amha::Algorithm::kAmhaStar) {

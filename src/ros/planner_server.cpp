@@ -75,6 +75,10 @@ std::uint32_t statusForQueryError(lat::QueryError e) {
   return Status::INTERNAL_ERROR;
 }
 
+/// Blocks of this size or more are mapped alone (~release_freed_memory): a 4000 x 4000 map's
+/// arrays are tens of MB each, a request's small vectors far below.
+constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
+
 /// What a client is told when the request queue is full.
 std::string busyMessage(int max_queued) {
   return "busy: one request is planning and " + std::to_string(max_queued) +
@@ -112,6 +116,9 @@ void moveResponse(Plan::Response&& in, Result* out) {
 
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     : nh_(nh), pnh_(pnh), startup_(loadPlannerParams(pnh)), params_(std::make_shared<const PlannerParams>(startup_)) {
+  if (startup_.release_freed_memory && !mapLargeBlocksAlone(kLargeBlockBytes)) {
+    ROS_WARN("amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
+  }
   queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(startup_.max_queued_requests));
   builder_ = std::make_unique<LatestJobRunner>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
@@ -137,8 +144,8 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   ros::NodeHandle action_nh(pnh_);
   action_nh.setCallbackQueue(&action_queue_);
   action_server_ = std::make_unique<ActionServer>(
-      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); },
-      [this](GoalHandle g) { onCancel(g); }, /*auto_start=*/false);
+      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); }, [this](GoalHandle g) { onCancel(g); });
+  action_server_->setGlobalFrame(startup_.global_frame);
   action_server_->start();
 
   // Waiting service calls each hold a thread; one more answers BUSY while the queue is full.
@@ -171,7 +178,8 @@ PlannerServer::~PlannerServer() {
   }
   // Stop taking callbacks; waiting service threads return as their cancelled jobs finish.
   map_spinner_->stop();
-  builder_.reset();  // finishes a build under way, drops one waiting
+  stop_builds_ = true;
+  builder_.reset();  // stops a build under way, drops one waiting
   planner_built_.notify_all();
   action_spinner_->stop();
   service_spinner_->stop();
@@ -199,7 +207,7 @@ void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
   bool ok = paramsFromConfig(config, *current, pnh_, next.get(), &error);
   if (ok && rebuild) {
     const auto planner = currentPlanner();
-    ok = latticeBuilds(*next, planner ? planner->map().resolution : 0.0, &error);
+    ok = latticeBuilds(*next, planner ? &planner->map() : nullptr, &error);
   }
   const std::string what = changedParameters(in_force, config);
   if (!ok) {
@@ -228,6 +236,14 @@ void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
                                : "in force from the first map");
 }
 
+void PlannerServer::releaseFreedMemory() {
+  if (!startup_.release_freed_memory) return;  // start-up only: see the constructor
+  const FreedMemory f = freed_memory_.releaseIfMuchFreed();
+  if (f.trimmed) {
+    ROS_DEBUG("amha_planner: returned freed memory to the system (%.0f MB free in the heap)", f.free_bytes / 1e6);
+  }
+}
+
 std::shared_ptr<lat::LatticePlanner> PlannerServer::currentPlanner() const {
   std::lock_guard<std::mutex> lock(planner_mutex_);
   return planner_;
@@ -246,29 +262,57 @@ void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& 
   cancel_flags_.erase(flag);
 }
 
+bool PlannerServer::mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, double tf_timeout,
+                                     nav_msgs::OccupancyGrid* out, std::string* why) {
+  *out = in;
+  const std::string frame = normaliseFrame(in.header.frame_id);
+  if (frame.empty() || frame == startup_.global_frame) return true;
+  // The transform when the map was made (the latest one if it has no stamp): a map in a frame
+  // that moves (odom) is placed where that frame was then.
+  try {
+    const auto t = lookupTransform(startup_.global_frame, frame, in.header.stamp, tf_timeout, nullptr);
+    geometry_msgs::PoseStamped origin, moved;
+    origin.header = in.header;
+    origin.pose = in.info.origin;
+    tf2::doTransform(origin, moved, t);
+    out->info.origin = moved.pose;
+  } catch (const tf2::TransformException& e) {
+    *why = "it is in frame '" + frame + "', and there is no transform to the global frame '" +
+           startup_.global_frame + "' (" + e.what() + ")";
+    return false;
+  }
+  return true;
+}
+
 void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
   // Checked (converted) here, so that a malformed map never replaces a good one; the planner
   // is built from this grid on the builder thread.
   std::shared_ptr<const lat::GridMap> grid;
   const std::shared_ptr<const PlannerParams> p = params();
+  nav_msgs::OccupancyGrid placed;
+  std::string why;
   try {
+    if (!mapInGlobalFrame(*msg, p->tf_timeout, &placed, &why)) throw std::runtime_error(why);
     grid = std::make_shared<const lat::GridMap>(
-        gridMapFromOccupancy(*msg, p->occupancy, startup_.max_map_cells));
+        gridMapFromOccupancy(placed, p->occupancy, startup_.max_map_cells));
   } catch (const std::exception& e) {
     ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
               msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(), e.what(),
               currentPlanner() ? "keeping the previous map" : "no map yet, requests get NO_MAP");
+    std::lock_guard<std::mutex> lock(planner_mutex_);
+    refused_map_reason_ = e.what();
     return;
   }
   const std::string frame = normaliseFrame(msg->header.frame_id);
   if (!frame.empty() && frame != startup_.global_frame) {
-    ROS_WARN("amha_planner: the map is in frame '%s' but global_frame is '%s'; plans treat "
-             "map coordinates as '%s' coordinates",
-             frame.c_str(), startup_.global_frame.c_str(), startup_.global_frame.c_str());
+    ROS_INFO("amha_planner: the map is in frame '%s': its origin, transformed into '%s', is (%.3f, %.3f)",
+             msg->header.frame_id.c_str(), startup_.global_frame.c_str(), placed.info.origin.position.x,
+             placed.info.origin.position.y);
   }
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
-    last_map_ = *msg;
+    // Its header keeps the frame it came in (updates name it); its origin is in the global frame.
+    last_map_ = std::move(placed);
     ++map_version_;
     unbuilt_grid_ = std::move(grid);
     // Converted as the parameters said before a reconfiguration changed them: convert it again.
@@ -315,17 +359,24 @@ void PlannerServer::rebuildPlanner() {
   std::shared_ptr<lat::LatticePlanner> planner;
   if (in.grid) {
     try {
+      // A robot too large for the map, or per-map data beyond the memory cap, is refused
+      // before the work (LatticeError, SetupStopped); shutdown stops a build under way.
+      amha::SearchLimits limits;
+      limits.cancel = &stop_builds_;
+      limits.max_memory_bytes = static_cast<std::size_t>(in.params->max_memory_mb * 1024.0 * 1024.0);
       planner = in.previous ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
-                            : std::make_shared<lat::LatticePlanner>(in.grid, in.params->lattice);
+                            : std::make_shared<lat::LatticePlanner>(in.grid, in.params->lattice, limits);
     } catch (const std::exception& e) {
       in.error = e.what();
     }
   }
   const bool incremental = in.previous != nullptr;
   in.previous = nullptr;  // see installPlanner
-  const bool have_planner = installPlanner(std::move(planner), in.version);
+  const bool have_planner = installPlanner(std::move(planner), in.version, in.full_map ? in.error : "");
   logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), have_planner,
            incremental);
+  // The replaced planner's arrays (megabytes per million cells) would otherwise stay resident.
+  releaseFreedMemory();
 }
 
 PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
@@ -372,7 +423,8 @@ PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
   return in;
 }
 
-bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, std::uint64_t version) {
+bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, std::uint64_t version,
+                                   const std::string& map_error) {
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
     build_failed_ = !planner;
@@ -387,6 +439,7 @@ bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner,
     }
     have_planner = planner_ != nullptr;
     built_version_ = version;  // a refused map counts as built: requests must not wait for it
+    if (planner_ == nullptr && !map_error.empty()) refused_map_reason_ = map_error;
   }
   // Released before the waiting requests wake (unless a running plan still holds it): the new
   // planner then holds the heuristic grids it kept from it alone, and repairs them in place.
@@ -420,7 +473,8 @@ void PlannerServer::logBuild(const BuildInput& in, double seconds, bool have_pla
           incremental ? " (rebuilt near the change only)" : "");
 }
 
-bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {
+PlannerServer::MapWait PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel,
+                                                        std::chrono::steady_clock::time_point deadline) {
   std::uint64_t wanted = 0;
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
@@ -428,23 +482,40 @@ bool PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel) {
   }
   std::unique_lock<std::mutex> lock(planner_mutex_);
   while (built_version_ < wanted) {
-    if (cancel || shutting_down_) return false;
-    // Polls too: the cancel flag and shutdown are not signalled through this condition.
-    planner_built_.wait_for(lock, std::chrono::milliseconds(50));
+    if (cancel || shutting_down_) return MapWait::kCancelled;
+    if (std::chrono::steady_clock::now() >= deadline) return MapWait::kTimeUp;
+    // onCancel notifies under planner_mutex_, so a cancel wakes this at once; the timeout only
+    // covers shutdown and the deadline.
+    const auto poll = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+    planner_built_.wait_until(lock, std::min(deadline, poll));
   }
-  return true;
+  return MapWait::kReady;
+}
+
+geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string& target, const std::string& source,
+                                                              const ros::Time& time, double timeout,
+                                                              const std::atomic<bool>* cancel) {
+  // canTransform in slices instead of one wait of tf_timeout: a cancel ends the wait at once.
+  const auto until = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(timeout));
+  while (!tf_buffer_.canTransform(target, source, time, ros::Duration(0.01))) {
+    if (cancel != nullptr && *cancel) throw TransformCancelled();
+    if (std::chrono::steady_clock::now() >= until) break;  // lookupTransform says why
+  }
+  return tf_buffer_.lookupTransform(target, source, time);
 }
 
 bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
-                                  geometry_msgs::PoseStamped* out, Plan::Response* res) {
+                                  geometry_msgs::PoseStamped* out, Plan::Response* res,
+                                  const std::atomic<bool>& cancel) {
   const char* what = is_start ? "start" : "goal";
   const std::string& global = startup_.global_frame;
   std::string frame = normaliseFrame(in.header.frame_id);
   if (frame.empty() && is_start) {
     // The robot's current pose.
     try {
-      const auto t = tf_buffer_.lookupTransform(global, startup_.robot_base_frame, ros::Time(0),
-                                                ros::Duration(tf_timeout));
+      const auto t = lookupTransform(global, startup_.robot_base_frame, ros::Time(0), tf_timeout, &cancel);
       out->header = t.header;
       out->header.frame_id = global;
       out->pose.position.x = t.transform.translation.x;
@@ -478,8 +549,7 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
     return true;
   }
   try {
-    const auto t = tf_buffer_.lookupTransform(global, frame, in.header.stamp,
-                                              ros::Duration(tf_timeout));
+    const auto t = lookupTransform(global, frame, in.header.stamp, tf_timeout, &cancel);
     tf2::doTransform(in, *out, t);
   } catch (const tf2::TransformException& e) {
     res->status = Status::TF_ERROR;
@@ -510,21 +580,8 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "cancelled before planning started";
       return res;
     }
-    // Every map and update received before this request is in the planner it gets (at most
-    // the build under way and one more); it keeps that planner even if a new map arrives.
-    if (!waitForCurrentMap(cancel)) {
-      res.status = Status::CANCELLED;
-      res.message = shutting_down_ ? "the planner is shutting down"
-                                   : "cancelled while the newest map's planner was being built";
-      return res;
-    }
-    const auto planner = currentPlanner();
-    if (!planner) {
-      res.status = Status::NO_MAP;
-      res.message = "no valid map received on " + map_sub_.getTopic() + " yet";
-      return res;
-    }
-    // The parameters in force now hold for the whole request, whatever changes meanwhile.
+    // The parameters in force when the request starts planning hold for the whole of it,
+    // whatever changes meanwhile (its budget, transforms and search).
     const std::shared_ptr<const PlannerParams> params = this->params();
     amha::PlannerConfig config;
     std::string error;
@@ -549,13 +606,51 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.message = "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)";
       return res;
     }
+    // The budget counts from here: the transforms and the wait for the newest map's planner use
+    // it too. Poses come first: their errors do not depend on the map.
+    const auto started = std::chrono::steady_clock::now();
+    const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                        std::chrono::duration<double>(std::min(budget, 1e9)));
     geometry_msgs::PoseStamped start, goal;
-    if (!toGlobalFrame(r.start, true, params->tf_timeout, &start, &res)) return res;
-    if (!toGlobalFrame(r.goal, false, params->tf_timeout, &goal, &res)) return res;
+    try {
+      if (!toGlobalFrame(r.start, true, params->tf_timeout, &start, &res, cancel)) return res;
+      if (!toGlobalFrame(r.goal, false, params->tf_timeout, &goal, &res, cancel)) return res;
+    } catch (const TransformCancelled&) {
+      res.status = Status::CANCELLED;
+      res.message = "cancelled while waiting for a transform";
+      return res;
+    }
+    // Every map and update received before this request is in the planner it gets (at most
+    // the build under way and one more); it keeps that planner even if a new map arrives.
+    switch (waitForCurrentMap(cancel, deadline)) {
+      case MapWait::kReady:
+        break;
+      case MapWait::kCancelled:
+        res.status = Status::CANCELLED;
+        res.message = shutting_down_ ? "the planner is shutting down"
+                                     : "cancelled while the newest map's planner was being built";
+        return res;
+      case MapWait::kTimeUp:
+        res.status = Status::TIME_EXHAUSTED;
+        res.message = "time budget of " + fmt(budget, 2) +
+                      " s used up while the newest map's planner was being built";
+        return res;
+    }
+    const auto planner = currentPlanner();
+    if (!planner) {
+      std::lock_guard<std::mutex> lock(planner_mutex_);
+      res.status = Status::NO_MAP;
+      res.message = refused_map_reason_.empty()
+                        ? "no valid map received on " + map_sub_.getTopic() + " yet"
+                        : "no usable map on " + map_sub_.getTopic() + " yet: the last one was refused: " +
+                              refused_map_reason_;
+      return res;
+    }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;
-    limits.time_limit_s = budget;
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    limits.time_limit_s = std::max(0.0, budget - waited);
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params->max_memory_mb * 1024.0 * 1024.0);
 
@@ -719,6 +814,7 @@ Plan::Response PlannerServer::runBlocking(const Request& request) {
   const bool queued = queue_->submit([this, request, id, flag, done] {
     done->set_value(execute(request, id, *flag, {}));
     releaseCancelFlag(flag);
+    releaseFreedMemory();
   });
   if (!queued) {
     releaseCancelFlag(flag);
@@ -789,39 +885,33 @@ void PlannerServer::onGoal(GoalHandle goal) {
   r.start_tolerance = g->start_tolerance;
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
-  auto flag = newCancelFlag();
+  auto job = std::make_shared<GoalJob>();
+  job->cancel = newCancelFlag();
+  job->request_id = id;
 
   std::lock_guard<std::mutex> lock(goals_mutex_);
-  const bool queued = queue_->submit([this, goal, r, id, flag, goal_id]() mutable {
+  const bool queued = queue_->submit([this, goal, r, id, job, goal_id]() mutable {
     { std::lock_guard<std::mutex> accepted(goals_mutex_); }  // setAccepted() has run
-    Plan::Response res = execute(r, id, *flag, [&goal](const PlanSolution& s) {
-      PlanAnytimeFeedback feedback;
-      feedback.solution = s;
-      goal.publishFeedback(feedback);
-    });
-    logOutcome("plan_anytime", res);
-    const std::uint32_t status = res.status;
-    const std::string message = res.message;
-    PlanAnytimeResult result;
-    moveResponse(std::move(res), &result);
-    const auto state = goal.getGoalStatus().status;
-    const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
-                                  state == actionlib_msgs::GoalStatus::RECALLING;
-    if (status == Status::SUCCESS) {
-      goal.setSucceeded(result, message);
-    } else if (status == Status::CANCELLED && client_cancelled) {
-      goal.setCanceled(result, message);
-    } else {
-      goal.setAborted(result, message);
-    }
-    {
-      std::lock_guard<std::mutex> done(goals_mutex_);
-      goal_cancel_flags_.erase(goal_id);
-    }
-    releaseCancelFlag(flag);
-  });
+    int queued_phase = GoalJob::kQueued;
+    if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kRunning)) {
+      Plan::Response res = execute(r, id, *job->cancel, [&goal](const PlanSolution& s) {
+        PlanAnytimeFeedback feedback;
+        feedback.solution = s;
+        goal.publishFeedback(feedback);
+      });
+      logOutcome("plan_anytime", res);
+      finishGoal(goal, std::move(res));
+      job->phase = GoalJob::kDone;
+      {
+        std::lock_guard<std::mutex> done(goals_mutex_);
+        goal_jobs_.erase(goal_id);
+      }
+    }  // else onCancel answered it while it waited
+    releaseCancelFlag(job->cancel);
+    releaseFreedMemory();
+  }, &job->ticket);
   if (!queued) {
-    releaseCancelFlag(flag);
+    releaseCancelFlag(job->cancel);
     PlanAnytimeResult busy;
     busy.request_id = id;
     busy.status = Status::BUSY;
@@ -831,14 +921,54 @@ void PlannerServer::onGoal(GoalHandle goal) {
     goal.setRejected(busy, busy.message);
     return;
   }
-  goal_cancel_flags_[goal_id] = flag;
+  goal_jobs_[goal_id] = job;
   goal.setAccepted("queued as request " + std::to_string(id));
+}
+
+void PlannerServer::finishGoal(GoalHandle& goal, Plan::Response&& res) {
+  const std::uint32_t status = res.status;
+  const std::string message = res.message;
+  PlanAnytimeResult result;
+  moveResponse(std::move(res), &result);
+  const auto state = goal.getGoalStatus().status;
+  const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
+                                state == actionlib_msgs::GoalStatus::RECALLING;
+  if (status == Status::SUCCESS) {
+    goal.setSucceeded(result, message);
+  } else if (status == Status::CANCELLED && client_cancelled) {
+    goal.setCanceled(result, message);
+  } else {
+    goal.setAborted(result, message);
+  }
 }
 
 void PlannerServer::onCancel(GoalHandle goal) {
   std::lock_guard<std::mutex> lock(goals_mutex_);
-  const auto it = goal_cancel_flags_.find(goal.getGoalID().id);
-  if (it != goal_cancel_flags_.end()) *it->second = true;
+  const auto it = goal_jobs_.find(goal.getGoalID().id);
+  if (it == goal_jobs_.end()) return;
+  const std::shared_ptr<GoalJob> job = it->second;
+  *job->cancel = true;
+  {
+    // A request waiting for the newest map's planner wakes now (waitForCurrentMap).
+    std::lock_guard<std::mutex> wake(planner_mutex_);
+    planner_built_.notify_all();
+  }
+  // Still in the queue: answered now, not when the request before it ends; its job skips.
+  int queued_phase = GoalJob::kQueued;
+  if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kDone)) {
+    // Its place in the queue goes to the next request at once (else the job, when the worker
+    // takes it, finds it done and releases the flag itself).
+    if (queue_->removeWaiting(job->ticket)) releaseCancelFlag(job->cancel);
+    Plan::Response res;
+    res.request_id = job->request_id;
+    res.status = Status::CANCELLED;
+    res.message = "cancelled while waiting in the queue: no planning was done";
+    res.path.header.frame_id = startup_.global_frame;
+    res.path.header.stamp = ros::Time::now();
+    logOutcome("plan_anytime", res);
+    finishGoal(goal, std::move(res));
+    goal_jobs_.erase(it);
+  }
 }
 
 }  // namespace amha_planner

@@ -1,6 +1,7 @@
 // Run-time parameters <-> dynamic_reconfigure configuration (see reconfigure.h).
 #include "amha_planner/ros/reconfigure.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -194,19 +195,28 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   return true;
 }
 
-bool latticeBuilds(const PlannerParams& params, double resolution, std::string* error) {
+bool latticeBuilds(const PlannerParams& params, const lat::GridMap* map, std::string* error) {
   try {
-    if (resolution <= 0.0) {
-      lat::RobotFootprint::fromConfig(params.lattice);
-      return true;
+    const lat::RobotFootprint footprint = lat::RobotFootprint::fromConfig(params.lattice);
+    if (map == nullptr) return true;
+    const double res = map->resolution;
+    // The one check of a build that depends on the map's size, made here against the current
+    // map: the probe below is only as large as the robot.
+    const double inscribed = footprint.inscribed_radius;
+    if (2.0 * inscribed > std::min(map->width, map->height) * res) {
+      *error = "robot footprint: its inscribed circle (radius " + exact(inscribed) + " m) is wider than the current map (" +
+               exact(map->width * res) + " x " + exact(map->height * res) + " m): no pose on it is collision-free";
+      return false;
     }
-    // A small free map of that resolution: what a build checks (the primitives against the
-    // resolution, the footprint, the cost model) does not depend on the map's cells.
-    auto map = std::make_shared<lat::GridMap>();
-    map->width = map->height = 16;
-    map->resolution = resolution;
-    map->cost.assign(16 * 16, lat::kFreeCost);
-    lat::LatticePlanner probe(map, params.lattice);
+    // A free map of that resolution, just large enough for the robot: what else a build checks
+    // (the primitives against the resolution, the footprint and its sweeps, the cost model) does
+    // not depend on the map's cells.
+    const int side = std::max(16, static_cast<int>(std::ceil(2.0 * inscribed / res)) + 2);
+    auto probe_map = std::make_shared<lat::GridMap>();
+    probe_map->width = probe_map->height = side;
+    probe_map->resolution = res;
+    probe_map->cost.assign(static_cast<std::size_t>(side) * side, lat::kFreeCost);
+    lat::LatticePlanner probe(probe_map, params.lattice);
     return true;
   } catch (const std::exception& e) {
     *error = e.what();

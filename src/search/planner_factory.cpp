@@ -39,16 +39,15 @@ std::string num(double v) {
   s << v;
   return s.str();
 }
-void checkWeight(double w, const char* name) {
-  if (!(w >= 1.0 && w <= kMaxWeight)) {
-    throw std::invalid_argument(std::string(name) + " must be a number in [1, " + num(kMaxWeight) + "], got " + num(w));
+// NaN fails both comparisons, so it is refused with the infinities.
+void checkRange(double v, double lo, const char* name) {
+  if (!(v >= lo && v <= kMaxWeight)) {
+    throw std::invalid_argument(std::string(name) + " must be a finite number in [" + num(lo) + ", " + num(kMaxWeight) +
+                                "], got " + num(v));
   }
 }
-void checkDecrement(double d, const char* name) {
-  if (!(d >= 0.0 && d <= kMaxWeight)) {
-    throw std::invalid_argument(std::string(name) + " must be a number in [0, " + num(kMaxWeight) + "], got " + num(d));
-  }
-}
+void checkWeight(double w, const char* name) { checkRange(w, 1.0, name); }
+void checkDecrement(double d, const char* name) { checkRange(d, 0.0, name); }
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 // LatticePlanner facade must give the same costs, with poses from the start to the goal, and
 // refuse arbitrary (non-finite, out-of-map) poses cleanly, with and without a goal tolerance
 // (a substitute goal must be collision-free, within the tolerance, and where the paths end).
+// Hostile robots and motion models must be refused or stopped by the setup's limits.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -59,11 +60,31 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   c.coarse_block = in.u8() % 4;
   c.backward_search = in.u8() % 4 == 0;
   c.time_to_turn_45 = (in.u8() % 3) * 0.5;
+  // Now and then a hostile robot or motion model (issue 22: a 100 m radius, a 1e-9 m turning
+  // radius, a coarse block of 1e5, NaN): refused with a LatticeError, or stopped by the setup's
+  // limits, never a hang, a crash or gigabytes.
+  if (in.u8() == 0xA5) {
+    switch (in.u8() % 4) {
+      case 0: c.footprint.clear(); c.robot_radius = in.f64(); break;
+      case 1: c.turning_radius = in.f64(); break;
+      case 2: c.coarse_block = in.i32(); break;
+      default: {
+        const double k = std::ldexp(1.0, in.u8() % 48);
+        c.robot_radius *= k;
+        for (auto& v : c.footprint) v = {v[0] * k, v[1] * k};
+      }
+    }
+  }
+  SearchLimits setup;
+  setup.time_limit_s = 2.0;
+  setup.max_memory_bytes = std::size_t{512} << 20;
   std::unique_ptr<LatticePlanner> planner;
   try {
-    planner.reset(new LatticePlanner(map, c));
+    planner.reset(new LatticePlanner(map, c, setup));
   } catch (const LatticeError& e) {
     return;  // a robot or motion model this map cannot take
+  } catch (const SetupStopped& e) {
+    return;  // too much per-map work for the limits
   }
   const LatticeGraph g(map, c);
   const HeuristicGridBuilder builder(g);

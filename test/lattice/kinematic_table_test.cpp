@@ -143,10 +143,12 @@ std::vector<NamedConfig> primitiveSets() {
 TEST(KinematicTable, EveryEntryIsTheCappedExactCostForEveryHeadingAndDirection) {
   for (NamedConfig& set : primitiveSets()) {
     set.config.kinematic_radius = 12 * set.resolution;  // R = 12 cells: quick, and every kind of entry
+    // The table does not depend on the map; the map only has to hold the robot (0.4 m wide),
+    // which the lattice checks: 24 cells of 0.025 m.
     auto map = std::make_shared<GridMap>();
-    map->width = map->height = 8;
+    map->width = map->height = 24;
     map->resolution = set.resolution;
-    map->cost.assign(64, kFreeCost);
+    map->cost.assign(24 * 24, kFreeCost);
     const LatticeGraph g(map, set.config);
     ASSERT_TRUE(g.kinematicTables()) << set.name;
     const KinematicTables& t = *g.kinematicTables();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -299,6 +300,129 @@ TEST(LatticeLimits, HugeOrNegativeSizesInFilesAreRefused) {
                                                "occupied_thresh: 0.65\nfree_thresh: 0.196\n"));
             }).find("resolution -0.05 is not positive"),
             std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Absurd robots and the planner's setup (issue 22, item 2): refused up front, or stopped by the
+// request's cancel, time budget and memory cap.
+
+std::string setupError(const std::shared_ptr<GridMap>& map, const LatticeConfig& c, LatticeError::Kind* kind) {
+  try {
+    LatticePlanner p(map, c);
+  } catch (const LatticeError& e) {
+    *kind = e.kind();
+    return e.what();
+  }
+  return "";
+}
+
+// A robot wider than the map fits nowhere; one whose sweeps would touch millions of cells took
+// minutes and gigabytes (a 100 m robot on the 56 x 61 m Willow Garage map: killed after 240 s at
+// 5.4 GB). Both are refused before any sweep is rasterised.
+TEST(LatticeLimits, RobotsWiderThanTheMapOrSweepingMillionsOfCellsAreRefusedAtOnce) {
+  auto map = test::randomMap(400, 300, 0.1, 1, 0, 0);  // 40 x 30 m
+  LatticeError::Kind kind = LatticeError::Kind::kMap;
+  LatticeConfig c;
+  for (double r : {15.01, 30.0, 100.0, 1e6}) {
+    c.robot_radius = r;
+    const auto t0 = Clock::now();
+    const std::string why = setupError(map, c, &kind);
+    EXPECT_LT(secondsSince(t0), 0.5) << r;
+    EXPECT_EQ(kind, LatticeError::Kind::kRobot) << r;
+    EXPECT_NE(why.find("is wider than the map (40 x 30 m)"), std::string::npos) << why;
+  }
+  c.robot_radius = 14.0;  // a disc that fits, but sweeps of ~6 x 10^6 cells
+  const auto t0 = Clock::now();
+  const std::string why = setupError(map, c, &kind);
+  EXPECT_LT(secondsSince(t0), 0.5);
+  EXPECT_EQ(kind, LatticeError::Kind::kRobot);
+  EXPECT_NE(why.find("would touch up to"), std::string::npos) << why;
+  // A big robot within both limits is still built.
+  c.robot_radius = 1.5;
+  EXPECT_EQ(setupError(map, c, &kind), "");
+}
+
+// Turning radii far below a cell ended in an OpenCV assertion (an arc of zero radius); coarse
+// blocks of 10^5 cells hung (k^2 work per action). Both are configuration errors now.
+TEST(LatticeLimits, TinyTurningRadiiAndHugeCoarseBlocksAreRefused) {
+  auto map = test::randomMap(100, 100, 0.1, 1, 0, 0);
+  LatticeError::Kind kind = LatticeError::Kind::kMap;
+  LatticeConfig c;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double r : {1e-9, 0.0, -0.5, std::nan(""), -inf, inf, 0.0009}) {
+    c.turning_radius = r;
+    const std::string why = setupError(map, c, &kind);
+    EXPECT_EQ(kind, LatticeError::Kind::kConfig) << r;
+    EXPECT_NE(why.find("below a hundredth of a cell (0.001 m"), std::string::npos) << why;
+  }
+  c.turning_radius = 0.001;  // a hundredth of a cell: the tightest arcs
+  EXPECT_EQ(setupError(map, c, &kind), "");
+  c = LatticeConfig();
+  for (int k : {-1, kMaxCoarseBlock + 1, 100000, INT_MAX}) {
+    c.coarse_block = k;
+    const auto t0 = Clock::now();
+    const std::string why = setupError(map, c, &kind);
+    EXPECT_LT(secondsSince(t0), 0.5);
+    EXPECT_EQ(kind, LatticeError::Kind::kConfig) << k;
+    EXPECT_NE(why.find("coarse_block"), std::string::npos) << why;
+  }
+}
+
+// The per-map work honours the request's limits: a cancel or the time budget stops the
+// footprint sweeps of a large robot (seconds of work) within milliseconds, and a memory cap
+// below the estimated per-map data refuses it before it starts.
+TEST(LatticeLimits, SetupHonoursCancelTimeBudgetAndMemoryCap) {
+  auto map = test::randomMap(600, 600, 0.1, 1, 0, 0);
+  LatticeConfig c;
+  c.robot_radius = 8.0;  // ~3.5 M swept cells with the default primitives: seconds to rasterise
+  auto stopped = [&](const SearchLimits& limits, double* took) {
+    const auto t0 = Clock::now();
+    try {
+      LatticePlanner p(map, c, limits);
+    } catch (const SetupStopped& e) {
+      *took = secondsSince(t0);
+      return e.status();
+    }
+    *took = secondsSince(t0);
+    return SearchStatus::kNoSolution;  // not stopped
+  };
+  double took = 0.0;
+  SearchLimits budget;
+  budget.time_limit_s = 0.05;
+  EXPECT_EQ(stopped(budget, &took), SearchStatus::kTimeLimit);
+  EXPECT_LT(took, 0.05 + kLatencyBound);
+
+  std::atomic<bool> cancel{false};
+  SearchLimits cancellable;
+  cancellable.cancel = &cancel;
+  SearchStatus status = SearchStatus::kNoSolution;
+  std::thread t([&] { status = stopped(cancellable, &took); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const auto t_cancel = Clock::now();
+  cancel = true;
+  t.join();
+  EXPECT_EQ(status, SearchStatus::kCancelled);
+  EXPECT_LT(secondsSince(t_cancel), kLatencyBound);
+
+  SearchLimits capped;
+  capped.max_memory_bytes = 32u << 20;  // the sweeps alone need ~55 MB
+  EXPECT_EQ(stopped(capped, &took), SearchStatus::kMemoryLimit);
+  EXPECT_LT(took, 0.1);
+  try {
+    LatticePlanner p(map, c, capped);
+  } catch (const SetupStopped& e) {
+    EXPECT_NE(std::string(e.what()).find("above the memory cap of 33 MB"), std::string::npos) << e.what();
+  }
+
+  // A plan's heuristic grids count against its memory cap too (4 grids of 4 bytes a cell).
+  c.robot_radius = 0.2;
+  LatticePlanner planner(map, c);
+  SearchLimits small;
+  small.max_memory_bytes = 600 * 600;
+  const PlanResult r = planner.plan({10.0, 10.0, 0.0}, {50.0, 50.0, 0.0}, defaultConfig(Algorithm::kAmhaStar), small);
+  EXPECT_EQ(r.error, QueryError::kNone) << r.message;
+  EXPECT_EQ(r.search.status, SearchStatus::kMemoryLimit);
+  EXPECT_TRUE(r.solutions.empty());
 }
 
 // ---------------------------------------------------------------------------------------------

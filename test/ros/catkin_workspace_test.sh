@@ -32,8 +32,11 @@ if [ "${1:-}" = "--launch" ]; then
   for _ in $(seq 1 120); do
     if grep -q "Failed to load nodelet" "$launch_log"; then verdict=not_loaded; break; fi
     if ! kill -0 "$launch_pid" 2>/dev/null; then verdict=launch_exited; break; fi
-    # An empty request: no map yet, so the server answers NO_MAP (58) before anything else.
-    answer=$(timeout 10 rosservice call /amha_planner/plan "{}" 2>/dev/null)
+    # Both poses in the global frame (the server resolves poses before it looks for a map; an
+    # empty start frame would ask tf for the robot's pose): no map yet, so NO_MAP (58).
+    answer=$(timeout 10 rosservice call /amha_planner/plan \
+      "{start: {header: {frame_id: map}, pose: {orientation: {w: 1.0}}},
+        goal: {header: {frame_id: map}, pose: {orientation: {w: 1.0}}}}" 2>/dev/null)
     if grep -q "^status: 58" <<<"$answer"; then verdict=loaded; break; fi
     sleep 0.5
   done

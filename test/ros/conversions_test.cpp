@@ -261,6 +261,23 @@ TEST(SearchConfigFor, AppliesParametersThenRequestOverrides) {
   EXPECT_FALSE(searchConfigFor(p, "", 0, std::numeric_limits<double>::infinity(), &c, &error));
 }
 
+// A request's weights live in [1, amha::kMaxWeight] (issue 22, item 1: w1 = 1e308 was answered
+// NO_PATH_FOUND); every algorithm that reads them refuses the rest with a message.
+TEST(SearchConfigFor, RefusesRequestWeightsOutsideTheirRange) {
+  PlannerParams p;
+  amha::PlannerConfig c;
+  std::string error;
+  for (const char* algorithm : {"", "amha", "mha", "ara", "wastar"}) {
+    for (double w : {amha::kMaxWeight * 1.01, 1e15, 1e308, std::numeric_limits<double>::infinity(),
+                     std::numeric_limits<double>::quiet_NaN(), -1.0, 0.5}) {
+      EXPECT_FALSE(searchConfigFor(p, algorithm, w, 0, &c, &error)) << algorithm << " w1 " << w;
+      EXPECT_NE(error.find("is outside [1, 1e+06]"), std::string::npos) << error;
+      EXPECT_FALSE(searchConfigFor(p, algorithm, 0, w, &c, &error)) << algorithm << " w2 " << w;
+    }
+    EXPECT_TRUE(searchConfigFor(p, algorithm, amha::kMaxWeight, 0, &c, &error)) << error;
+  }
+}
+
 TEST(NormaliseFrame, StripsALeadingSlash) {
   EXPECT_EQ(normaliseFrame("/map"), "map");
   EXPECT_EQ(normaliseFrame("map"), "map");

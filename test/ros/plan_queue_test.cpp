@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <future>
 #include <mutex>
 #include <thread>
@@ -75,6 +76,27 @@ TEST(ConcurrentPlanQueue, ZeroWaitingMeansRejectWhileBusy) {
   EXPECT_TRUE(queue.submit([&] { ran = true; })) << "accepted again once idle";
   for (int i = 0; i < 1000 && !ran; ++i) std::this_thread::sleep_for(1ms);
   EXPECT_TRUE(ran);
+}
+
+// A cancelled request that waits leaves the queue at once and frees its place (issue 22, item
+// 9: it stayed until the worker reached it, and a request sent next was refused BUSY).
+TEST(ConcurrentPlanQueue, AWaitingJobRemovedLeavesAtOnceAndFreesItsPlace) {
+  PlanQueue queue(1);
+  Gate gate;
+  std::atomic<bool> removed_ran{false}, next_ran{false};
+  ASSERT_TRUE(queue.submit([&] { gate.opened.wait(); }));
+  for (int i = 0; i < 1000 && !queue.running(); ++i) std::this_thread::sleep_for(1ms);
+  std::uint64_t ticket = 0;
+  ASSERT_TRUE(queue.submit([&] { removed_ran = true; }, &ticket));
+  EXPECT_FALSE(queue.submit([&] { next_ran = true; })) << "the one place is taken";
+  EXPECT_TRUE(queue.removeWaiting(ticket));
+  EXPECT_FALSE(queue.removeWaiting(ticket)) << "already gone";
+  EXPECT_EQ(queue.waiting(), 0u);
+  EXPECT_TRUE(queue.submit([&] { next_ran = true; })) << "its place is free again";
+  gate.open.set_value();
+  for (int i = 0; i < 2000 && !next_ran; ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_TRUE(next_ran);
+  EXPECT_FALSE(removed_ran) << "a removed job must never run";
 }
 
 TEST(ConcurrentPlanQueue, DestructionRunsWaitingJobs) {

@@ -870,6 +870,52 @@ TEST(PlannerNodelet, ASecondRequestWaitsAndAThirdGetsBusy) {
   expectValidPath(res.path, kRoomStart, kRoomGoal, testMap());
 }
 
+// A map in another frame than the global one was used as if it were in it (issue 22, item 10).
+// Now it is transformed with tf2 when a transform exists (planner_nodelet.test publishes
+// map -> odom: (0.5, -0.5), yaw 0.3), and refused when none does.
+TEST(PlannerNodelet, AMapInAnotherFrameIsTransformedOrRefused) {
+  ASSERT_EQ(probeMap(), Status::INVALID_GOAL);
+  auto nowhere = testMapWithExtraBlock();
+  nowhere.header.frame_id = "nowhere";
+  g_map_pub.publish(nowhere);
+  ros::WallDuration(1.5).sleep();  // ~tf_timeout is 0.3 s
+  EXPECT_EQ(probeMap(), Status::INVALID_GOAL) << "a map without a transform to 'map' was used";
+
+  auto in_odom = testMap();
+  in_odom.header.frame_id = "odom";
+  g_map_pub.publish(in_odom);
+  // A start on the odom map's left wall: outside the map as given (x < -1 in 'map'), in the
+  // wall once the map is placed where 'odom' is.
+  const auto on_wall = pose(-0.9, 8.0, 0.0, "odom");
+  std::uint32_t status = Status::OUT_OF_MAP;
+  for (int i = 0; i < 100 && status != Status::INVALID_START; ++i) {
+    status = plan(on_wall, pose(9.0, 4.0, 0.0, "odom"), 1.0).status;
+    ros::WallDuration(0.1).sleep();
+  }
+  ASSERT_EQ(status, Status::INVALID_START) << "the map in 'odom' was not placed by its transform";
+  // A path across the rooms in odom coordinates is collision-free on the map in its own frame.
+  const auto res = plan(pose(0.0, 0.0, 0.0, "odom"), pose(9.0, 4.0, M_PI / 2, "odom"), 5.0);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  EXPECT_EQ(res.path.header.frame_id, "map");
+  nav_msgs::Path in_odom_frame = res.path;
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  for (auto& p : in_odom_frame.poses) {  // map -> odom: the inverse of the static transform
+    const double x = p.pose.position.x - 0.5, y = p.pose.position.y + 0.5, yaw = yawOf(p.pose) - 0.3;
+    p.pose.position.x = c * x + s * y;
+    p.pose.position.y = -s * x + c * y;
+    p.pose.orientation.z = std::sin(yaw / 2);
+    p.pose.orientation.w = std::cos(yaw / 2);
+  }
+  const auto& first = in_odom_frame.poses.front().pose.position;
+  const auto& last = in_odom_frame.poses.back().pose.position;
+  EXPECT_LE(std::hypot(first.x, first.y), kResolution);
+  EXPECT_LE(std::hypot(last.x - 9.0, last.y - 4.0), kResolution);
+  EXPECT_EQ(checkPathCollisionFree(in_odom_frame, testMap(), testFootprint(), kLethal), "");
+
+  g_map_pub.publish(testMap());  // back to the map the other tests use
+  ASSERT_TRUE(waitForProbe(Status::INVALID_GOAL, 30.0));
+}
+
 }  // namespace
 }  // namespace test
 }  // namespace amha_planner

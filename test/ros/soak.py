@@ -39,7 +39,7 @@ from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan, GetPlanRequest
 
-from amha_planner.msg import PlanAnytimeAction, PlanAnytimeGoal
+from amha_planner.msg import PlanAnytimeAction, PlanAnytimeActionResult, PlanAnytimeGoal
 from amha_planner.srv import Plan, PlanRequest, PlanResponse
 
 NS = "/amha_planner"
@@ -169,6 +169,27 @@ def synthetic_map(rng, seq):
     return m
 
 
+def huge_map(rng, side):
+    """A side x side map at 0.05 m (side 2048: the soak's max_map_cells), walls around and
+    20 x 20-cell blocks on ~10 % of it, free in the middle."""
+    data = [0] * (side * side)
+    for i in range(side):
+        data[i] = data[(side - 1) * side + i] = data[i * side] = data[i * side + side - 1] = 100
+    for _ in range(side * side // 4000):
+        x0, y0 = rng.randrange(side - 20), rng.randrange(side - 20)
+        if abs(x0 - side // 2) < 80 and abs(y0 - side // 2) < 80:
+            continue
+        for y in range(y0, y0 + 20):
+            data[y * side + x0:y * side + x0 + 20] = [100] * 20
+    m = OccupancyGrid()
+    m.header.frame_id = "map"
+    m.info.width = m.info.height = side
+    m.info.resolution = 0.05
+    m.info.origin.orientation.w = 1.0
+    m.data = data
+    return m
+
+
 def partial_update(rng, good):
     """A costmap-style update of a random rectangle of `good` (blocked, cleared, unknown or mixed
     cells), and the map it makes, or (update, None) for one with a defect the server must refuse
@@ -250,8 +271,9 @@ class Soak:
         self.rng = random.Random(args.seed)
         self.lock = threading.Lock()
         self.stats = {"requests": 0, "by_interface": {}, "by_kind": {}, "answers": {}, "answers_by_kind": {},
-                      "paths_checked": 0, "solutions_checked": 0, "goals_substituted": 0, "starts_escaped": 0, "cancels_sent": 0,
-                      "cancel_latency_running_s": [],
+                      "paths_checked": 0, "solutions_checked": 0, "goals_substituted": 0, "starts_escaped": 0,
+                      "cancels_sent": 0,
+                      "cancel_latencies": [],  # (running, client-observed s, result-stamped s or None)
                       "map_updates": {"valid": 0, "malformed": {}}, "updates_sent": {}, "failures": [], "rss_kb": [],
                       "checkpoints": []}
         self.maps = []          # (time published, Grid) of every valid map, in order
@@ -263,6 +285,27 @@ class Soak:
         self.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
         # Partial updates, as costmap_2d sends them (the server folds and applies them in order).
         self.update_pub = rospy.Publisher("/map_updates", OccupancyGridUpdate, queue_size=10)
+        # When the server sent each action result (its header stamp), by goal id: the cancel
+        # latency without this script's own delays (its threads share the GIL with path checks).
+        self.result_stamps = {}
+        self.result_sub = rospy.Subscriber(NS + "/plan_anytime/result", PlanAnytimeActionResult, self.on_result,
+                                           queue_size=100)
+
+    def on_result(self, msg):
+        with self.lock:
+            self.result_stamps[msg.status.goal_id.id] = msg.header.stamp.to_sec()
+            if len(self.result_stamps) > 20000:
+                for k in list(self.result_stamps)[:10000]:
+                    del self.result_stamps[k]
+
+    def result_stamp(self, goal_id, wait_s=2.0):
+        end = time.time() + wait_s
+        while True:
+            with self.lock:
+                t = self.result_stamps.pop(goal_id, None)
+            if t is not None or time.time() > end:
+                return t
+            time.sleep(0.01)
 
     # ---- bookkeeping
     def count(self, key, sub, n=1):
@@ -356,8 +399,8 @@ class Soak:
         elif kind == "far_out":
             req["goal"] = pose_stamped("map", 1e6, -1e6, yaw_quaternion(0.0))
             # The start is checked first, on the map in use, which may not yet be the one it was
-            # drawn from.
-            expected = {S.OUT_OF_MAP, S.INVALID_START}
+            # drawn from; a short budget may run out while a new map's planner is built.
+            expected = {S.OUT_OF_MAP, S.INVALID_START, S.TIME_EXHAUSTED}
         elif kind == "nan_position":
             which = rng.choice(["start", "goal"])
             req[which].pose.position.x = float("nan")
@@ -382,7 +425,7 @@ class Soak:
         elif kind == "bad_weight":
             req["algorithm"] = rng.choice(["", "amha", "ara", "wastar"])
             req[rng.choice(["w1", "w2"]) if req["algorithm"] in ("", "amha") else "w1"] = rng.choice(
-                [0.5, -3.0, float("nan"), float("inf")])
+                [0.5, -3.0, float("nan"), float("inf"), 1e15, 1e308])
             expected = {S.INVALID_REQUEST}
         elif kind == "bad_budget":
             req["time_budget"] = rng.choice([-1.0, float("nan"), float("inf"), -1e300])
@@ -636,15 +679,24 @@ class Soak:
                 client.cancel_goal()
                 return kind
         t_done = time.time()
-        if cancel_at is not None and running:
-            with self.lock:
-                self.stats["cancel_latency_running_s"].append(t_done - cancel_at)
         res = client.get_result()
         state = client.get_state()
-        if cancel_at is not None and state == GoalStatus.RECALLED:
-            # Cancelled before the server saw the goal: actionlib itself answers RECALLED with an
-            # empty result (whose status field reads 0 = SUCCESS: check the state first).
+        if cancel_at is not None and res is not None and res.status == S.CANCELLED:
+            # An answer to the cancel (a goal that ended on its own first is not one).
+            try:
+                goal_id = client.gh.comm_state_machine.action_goal.goal_id.id
+            except AttributeError:
+                goal_id = None
+            stamped = self.result_stamp(goal_id) if goal_id else None
+            with self.lock:
+                self.stats["cancel_latencies"].append(
+                    (running, t_done - cancel_at, None if stamped is None else stamped - cancel_at))
+        if cancel_at is not None and state == GoalStatus.RECALLED and res is not None and res.request_id == 0:
+            # Cancelled before the server saw the goal: actionlib answers RECALLED itself, with a
+            # result the server marks CANCELLED (it read SUCCESS, status 0, before issue 22).
             self.count("answers", "RECALLED_by_actionlib")
+            if res.status != S.CANCELLED:
+                self.fail("plan_anytime %s: RECALLED by actionlib with status %s" % (kind, STATUS_NAMES.get(res.status)))
             return kind
         if cancel_at is not None and state == GoalStatus.LOST and not feedback:
             # Python actionlib's client marks a goal LOST when a status message without it
@@ -831,17 +883,40 @@ class Soak:
         self.stop.set()
         for t in threads[2:]:
             t.join(timeout=90.0)
+        if self.args.huge_maps > 0 and self.status_kb("VmRSS") is not None:
+            self.huge_maps(self.args.huge_maps)
         return self.summary()
+
+    def huge_maps(self, cycles):
+        """Memory after huge maps: `cycles` maps of 2048 x 2048 cells, each with a request on it,
+        then the Willow Garage map again; checkpoints before and after (traffic stopped)."""
+        self.checkpoint("before huge maps")
+        rng = random.Random(self.args.seed + 11)
+        statuses = []
+        plan = rospy.ServiceProxy(NS + "/plan", Plan)
+        for _ in range(cycles):
+            msg = huge_map(rng, 2048)
+            self.map_pub.publish(msg)
+            time.sleep(3.0)  # a request waits for the planner of every map received before it
+            c = 2048 * 0.05 / 2
+            req = PlanRequest(start=pose_stamped("map", c, c, yaw_quaternion(0.0)),
+                              goal=pose_stamped("map", c + 3.0, c + 2.0, yaw_quaternion(1.0)), time_budget=20.0)
+            statuses.append(STATUS_NAMES.get(plan(req).status))  # waits for the build, then plans
+        self.stats["huge_map_requests"] = statuses
+        self.checkpoint("after huge maps")
 
     def summary(self):
         st = self.stats
         st["seconds"] = round(time.time() - self.t0, 1)
         st["node_pid"] = self.node_pid
         st["node_alive_at_end"] = self.status_kb("VmRSS") is not None
-        lat = sorted(st["cancel_latency_running_s"])
-        st["cancel_latency_running"] = {"count": len(lat), "median_ms": round(1000 * lat[len(lat) // 2], 1) if lat else None,
-                                        "max_ms": round(1000 * lat[-1], 1) if lat else None}
-        del st["cancel_latency_running_s"]
+        lats = st.pop("cancel_latencies")
+        st["cancel_latency"] = {
+            "running_client": distribution([c for r, c, _ in lats if r]),
+            "running_server": distribution([t for r, _, t in lats if r and t is not None]),
+            "waiting_client": distribution([c for r, c, _ in lats if not r]),
+            "waiting_server": distribution([t for r, _, t in lats if not r and t is not None])}
+        lat = sorted(t for r, _, t in lats if r and t is not None)
         cps = {c["label"]: c for c in st["checkpoints"]}
         if not st["node_alive_at_end"]:
             self.fail("the planner node died")
@@ -858,8 +933,14 @@ class Soak:
                 self.fail("memory (%s) grew from %d kB (middle) to %d kB (end)" % (key, cps["middle"][key], cps["end"][key]))
         elif self.args.seconds >= 60:
             self.fail("missing memory checkpoints")
+        # After the huge maps the live heap must be back (no leak); RSS is reported.
+        before, after = cps.get("before huge maps"), cps.get("after huge maps")
+        if before and after and before.get("heap_in_use_kb") and after.get("heap_in_use_kb"):
+            grown = after["heap_in_use_kb"] - before["heap_in_use_kb"]
+            if grown > 16 * 1024:
+                self.fail("heap in use grew by %d kB over the huge maps" % grown)
         if lat and lat[-1] > 1.0:
-            self.fail("a running goal's cancel took %.0f ms" % (1000 * lat[-1]))
+            self.fail("a running goal's result came %.0f ms after its cancel" % (1000 * lat[-1]))
         st["failure_count"] = len(st["failures"])
         st["failures"] = st["failures"][:50]
         samples = st.pop("rss_kb")
@@ -869,6 +950,16 @@ class Soak:
         return st
 
 
+def distribution(values):
+    """Count, median, 95th and 99th percentile and maximum, in ms (nearest rank)."""
+    v = sorted(values)
+    if not v:
+        return {"count": 0}
+    rank = lambda q: v[min(len(v) - 1, max(0, int(math.ceil(q * len(v))) - 1))]
+    return {"count": len(v), "median_ms": round(1000 * rank(0.5), 1), "p95_ms": round(1000 * rank(0.95), 1),
+            "p99_ms": round(1000 * rank(0.99), 1), "max_ms": round(1000 * v[-1], 1)}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seconds", type=float, default=300.0)
@@ -876,6 +967,8 @@ def main():
     ap.add_argument("--threads", type=int, default=3)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", default="")
+    ap.add_argument("--huge-maps", type=int, default=3,
+                    help="maps of 2048 x 2048 cells sent at the end, between two memory checkpoints")
     ap.add_argument("--launch-log", default=os.environ.get("AMHA_SOAK_LAUNCH_LOG", ""),
                     help="the node's output (for malloc_stats via gdb)")
     args = ap.parse_args(rospy.myargv()[1:])

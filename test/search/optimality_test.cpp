@@ -258,5 +258,40 @@ TEST(Search, RejectsBadWeights) {
   EXPECT_THROW(makePlanner(c), std::invalid_argument);
 }
 
+// Weights and decrements live in [1, kMaxWeight] and [0, kMaxWeight] (issue 22, item 1: w1 =
+// 1e15 gave a false "no path"); the refusal names the parameter and the range.
+TEST(Search, RejectsWeightsAndDecrementsOutsideTheirRange) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kWeightedAStar}) {
+    for (double w : {kMaxWeight * 1.000001, 1e15, 1e308, inf, nan, 0.999}) {
+      PlannerConfig c = defaultConfig(a);
+      c.w1 = w;
+      try {
+        makePlanner(c);
+        ADD_FAILURE() << algorithmName(a) << " accepted w1 = " << w;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("must be a finite number in [1, 1e+06]"), std::string::npos) << e.what();
+      }
+      if (a == Algorithm::kAmhaStar || a == Algorithm::kMhaStar) {
+        c = defaultConfig(a);
+        c.w2 = w;
+        EXPECT_THROW(makePlanner(c), std::invalid_argument) << algorithmName(a) << " w2 = " << w;
+      }
+    }
+    PlannerConfig c = defaultConfig(a);
+    c.w1 = kMaxWeight;
+    c.w2 = a == Algorithm::kAmhaStar || a == Algorithm::kMhaStar ? kMaxWeight : c.w2;
+    EXPECT_NO_THROW(makePlanner(c)) << algorithmName(a);
+  }
+  for (double d : {-1.0, 2e6, inf, nan}) {
+    PlannerConfig c = defaultConfig(Algorithm::kAmhaStar);
+    c.dw2 = d;
+    EXPECT_THROW(makePlanner(c), std::invalid_argument) << "dw2 = " << d;
+    c = defaultConfig(Algorithm::kAraStar);
+    c.dw1 = d;
+    EXPECT_THROW(makePlanner(c), std::invalid_argument) << "ARA* dw1 = " << d;
+  }
+}
+
 }  // namespace
 }  // namespace amha

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,20 @@ struct LatticeAction {
 
 constexpr Cost kInvalidEdge = -1;
 
+struct GridStop;
+
+/// What may stop a graph's construction (LatticePlanner's constructor with limits).
+struct GraphLimits {
+  /// Its cancel flag and deadline stop the work between steps (SetupStopped); null: never.
+  const GridStop* stop = nullptr;
+  /// Refuses (SetupStopped, kMemoryLimit) a graph whose per-map data are estimated above this.
+  std::size_t max_bytes = std::numeric_limits<std::size_t>::max();
+};
+
+/// Throws SetupStopped (kCancelled or kTimeLimit) if `stop` (may be null) asks to stop;
+/// `during` names the step for the message.
+void throwIfStopped(const GridStop* stop, const char* during);
+
 /// The radii that bound the clearance classes, for actions with these sweep radii: the distinct
 /// ones, ascending; more than 255 are rounded up onto 255 levels (a larger radius only sends the
 /// search to the full footprint check more often), so that a class fits in a byte.
@@ -46,8 +61,9 @@ class LatticeGraph {
  public:
   /// Loads/generates primitives, validates them against the map, precomputes every action's
   /// cells and costs, the clearance map, and the free-space openings for the heuristics.
-  /// Throws LatticeError.
-  LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config);
+  /// Throws LatticeError, or SetupStopped when `limits` stop it.
+  LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config,
+               const GraphLimits& limits = GraphLimits());
   /// The graph of `map`, whose cells differ from previous.map()'s only inside `changed` (same
   /// size, resolution and origin, else LatticeError): equal to LatticeGraph(map,
   /// previous.config()), but the actions are copied and only the clearance and openings that
@@ -150,7 +166,10 @@ class LatticeGraph {
   /// Member-wise, for the incremental constructor only (actionsInto() must then be relinked:
   /// it points into the copied-from graph's actions).
   LatticeGraph(const LatticeGraph&) = default;
-  void buildActions();
+  /// Refuses robots that fit nowhere on the map or whose sweeps would be too large, and
+  /// estimates the per-map bytes against `limits` (before any sweep is computed).
+  void checkRobotSize(const GraphLimits& limits) const;
+  void buildActions(const GridStop* stop);
   void linkActionsInto();
   /// The radii (cells) of the two openings.
   std::array<double, 2> openingRadii() const;

@@ -37,6 +37,19 @@ constexpr double kMaxOriginMagnitude = 1e8;
 /// radians (a quaternion gives [-pi, pi]).
 constexpr double kMaxOriginYaw = 1e6;
 
+/// Largest LatticeConfig::coarse_block: the abstraction's edges cost coarse_block^2 work per
+/// action to build (about a second at 1024 with 16 headings).
+constexpr int kMaxCoarseBlock = 1024;
+/// Smallest turning radius (in cells of the map) the primitive generator is given: far below it an
+/// arc degenerates (its curvature overflows), and every radius under a cell gives the same
+/// primitives anyway (the tightest turn ends on a neighbouring cell).
+constexpr double kMinTurningRadiusCells = 0.01;
+/// Most cells the robot's footprint may sweep along all the primitives together, as bounded
+/// before any is rasterised (each costs 16 bytes of precomputed offsets and ~0.5 us to
+/// rasterise): 4.2 M cells, e.g. a robot of 1.5 m radius on 2.5 cm cells takes ~1.2 M. Larger
+/// robots are refused (LatticeError kRobot) instead of taking minutes and gigabytes.
+constexpr std::size_t kMaxSweptCells = std::size_t{1} << 22;
+
 /// A 2-D map. Cell (0, 0) is the bottom-left cell (nav_msgs/OccupancyGrid order: row-major,
 /// x fastest, row 0 at the origin); (origin_x, origin_y) is that cell's outer corner in the map
 /// frame, and the grid is rotated by origin_yaw about it.
@@ -65,6 +78,18 @@ class LatticeError : public std::runtime_error {
 
  private:
   Kind kind_;
+};
+
+/// The per-map work of a LatticePlanner constructed with limits (footprint sweeps, clearance,
+/// openings, heuristic tables) was stopped by the cancel flag, the time budget or the memory
+/// cap; status() says which (kCancelled, kTimeLimit, kMemoryLimit) and what() why.
+class SetupStopped : public std::runtime_error {
+ public:
+  SetupStopped(SearchStatus status, const std::string& what) : std::runtime_error(what), status_(status) {}
+  SearchStatus status() const { return status_; }
+
+ private:
+  SearchStatus status_;
 };
 
 /// Builds a GridMap from OccupancyGrid-style data. Throws LatticeError (kMap) for sizes that are
@@ -308,8 +333,15 @@ struct PlanResult {
 /// plan() may be called from several threads at once.
 class LatticePlanner {
  public:
-  /// Throws LatticeError when the map, primitives or robot are unusable.
+  /// Throws LatticeError when the map, primitives or robot are unusable: among them a robot
+  /// whose inscribed circle is wider than the map, and footprint sweeps of more than
+  /// kMaxSweptCells cells (refused before any sweep is computed).
   LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config);
+  /// The same, honouring `limits` (added after the API freeze): its cancel flag and its time
+  /// budget (counted from this call) stop the per-map work, and a per-map memory estimate
+  /// above max_memory_bytes refuses it before it starts; each throws SetupStopped.
+  /// max_expansions and max_states do not apply.
+  LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config, const SearchLimits& limits);
   /// The planner of `map`, a version of previous.map() whose cells differ only inside
   /// `changed` (same size, resolution and origin; checked, else LatticeError): the same result
   /// as the constructor above with previous.config(), built from `previous` by recomputing only

@@ -8,10 +8,12 @@
 
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 namespace amha_planner {
 
@@ -24,8 +26,12 @@ class PlanQueue {
   PlanQueue& operator=(const PlanQueue&) = delete;
 
   /// Queues `job`; false (and `job` is dropped) when max_waiting jobs are already waiting or
-  /// the queue is shutting down. Jobs must not throw.
-  bool submit(std::function<void()> job);
+  /// the queue is shutting down. Jobs must not throw. `ticket`, if given, receives a number
+  /// that removeWaiting() takes.
+  bool submit(std::function<void()> job, std::uint64_t* ticket = nullptr);
+  /// Drops the job of `ticket` if it is still waiting (a cancelled request: its place goes to
+  /// the next one at once); false if it has started or is gone.
+  bool removeWaiting(std::uint64_t ticket);
 
   std::size_t waiting() const;
   bool running() const;
@@ -36,7 +42,8 @@ class PlanQueue {
   const std::size_t max_waiting_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
-  std::deque<std::function<void()>> jobs_;
+  std::deque<std::pair<std::uint64_t, std::function<void()>>> jobs_;  // (ticket, job)
+  std::uint64_t next_ticket_ = 0;
   bool running_ = false;
   bool stopping_ = false;
   std::thread worker_;

@@ -14,6 +14,10 @@
 
 namespace amha_planner {
 
+/// Ranges of ~robot_radius and ~turning_radius (metres).
+constexpr double kMaxRobotRadius = 10.0;
+constexpr double kMaxTurningRadius = 100.0;
+
 struct PlannerParams {
   amha::lattice::LatticeConfig lattice;            ///< robot and motion model
   amha::lattice::OccupancyConversion occupancy;    ///< how the map's cells become costs
@@ -52,6 +56,11 @@ struct PlannerParams {
   double tf_timeout = 0.5;            ///< seconds to wait for a transform
 
   int max_queued_requests = 2;        ///< requests that may wait while one plans; more: BUSY
+  /// Returns the memory of replaced maps and finished requests to the system: blocks of 4 MiB
+  /// and more are mapped alone (process-wide, freed_memory.h), and the heap's free pages are
+  /// trimmed after much has been freed. Off: glibc's defaults, which keep tens of MB of a
+  /// replaced 4000 x 4000 map resident for reuse. Read at start-up only (not reconfigurable).
+  bool release_freed_memory = true;
   double marker_spacing = 0.5;        ///< metres between footprint markers along the path
 };
 
@@ -61,7 +70,8 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh);
 
 /// The search configuration for a request: `algorithm_name` "" keeps the configured algorithm;
 /// w1/w2 of 0 keep the configured weights (for ara and wastar, w1 is epsilon and w2 is unused).
-/// Returns false with a message for an unknown name or weights that are not finite and >= 1.
+/// Returns false with a message for an unknown name or weights outside [1, amha::kMaxWeight]
+/// (NaN and infinities included).
 bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_name, double w1,
                      double w2, amha::PlannerConfig* out, std::string* error);
 

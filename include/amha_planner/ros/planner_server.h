@@ -18,6 +18,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -27,7 +28,6 @@
 #include <set>
 #include <string>
 
-#include <actionlib/server/action_server.h>
 #include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
 #include <map_msgs/OccupancyGridUpdate.h>
@@ -43,7 +43,9 @@
 #include "amha_planner/Plan.h"
 #include "amha_planner/PlanAnytimeAction.h"
 #include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/ros/freed_memory.h"
 #include "amha_planner/ros/latest_job_runner.h"
+#include "amha_planner/ros/plan_anytime_server.h"
 #include "amha_planner/ros/plan_queue.h"
 #include "amha_planner/ros/planner_params.h"
 
@@ -59,7 +61,7 @@ class PlannerServer {
   PlannerServer& operator=(const PlannerServer&) = delete;
 
  private:
-  using ActionServer = actionlib::ActionServer<PlanAnytimeAction>;
+  using ActionServer = PlanAnytimeServer;
   using GoalHandle = ActionServer::GoalHandle;
   /// Called with each improved solution's message while a request runs.
   using SolutionSink = std::function<void(const PlanSolution&)>;
@@ -76,6 +78,12 @@ class PlannerServer {
   };
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
+  /// A map whose frame is not the global frame, with its origin transformed into the global
+  /// frame by tf2 (waiting up to `tf_timeout` seconds; its header keeps the frame it came in,
+  /// which its updates name); false with `why` set if there is no transform (then the map must
+  /// be refused, not used as it is).
+  bool mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, double tf_timeout, nav_msgs::OccupancyGrid* out,
+                        std::string* why);
   void onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update);
   /// What one build starts from: the maps and updates received since the last build.
   struct BuildInput {
@@ -98,16 +106,22 @@ class PlannerServer {
   void rebuildPlanner();
   /// Takes what rebuildPlanner() is to build (map_mutex_), converting only changed cells.
   BuildInput takeUnbuiltMap();
-  /// Makes `planner` current if there is one, and marks `version` built either way.
-  bool installPlanner(std::shared_ptr<amha::lattice::LatticePlanner> planner, std::uint64_t version);
+  /// Makes `planner` current if there is one, and marks `version` built either way; without
+  /// any planner, `map_error` (why a full map was refused) is what NO_MAP answers say.
+  bool installPlanner(std::shared_ptr<amha::lattice::LatticePlanner> planner, std::uint64_t version,
+                      const std::string& map_error);
   void logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const;
-  /// Waits until the planner covers every map and update received so far; false if `cancel`
-  /// or shutdown came first.
-  bool waitForCurrentMap(const std::atomic<bool>& cancel);
+  /// Waits until the planner covers every map and update received so far. kCancelled if
+  /// `cancel` or shutdown came first (a cancel wakes it at once: onCancel notifies),
+  /// kTimeUp if `deadline` passed first.
+  enum class MapWait { kReady, kCancelled, kTimeUp };
+  MapWait waitForCurrentMap(const std::atomic<bool>& cancel, std::chrono::steady_clock::time_point deadline);
   bool onPlan(Plan::Request& req, Plan::Response& res);
   bool onMakePlan(nav_msgs::GetPlan::Request& req, nav_msgs::GetPlan::Response& res);
   void onGoal(GoalHandle goal);
   void onCancel(GoalHandle goal);
+  /// Sends `res` as the goal's result, with the goal state its status calls for.
+  void finishGoal(GoalHandle& goal, Plan::Response&& res);
 
   /// Queues `request` and waits for its response (BUSY when the queue is full).
   Plan::Response runBlocking(const Request& request);
@@ -120,16 +134,27 @@ class PlannerServer {
   Plan::Response execute(const Request& request, std::uint32_t id,
                          const std::atomic<bool>& cancel, const SolutionSink& sink);
   /// Resolves a request pose into the global frame (tf2); false with status and message set.
+  /// Throws TransformCancelled if `cancel` is set while it waits for a transform.
   bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
-                     geometry_msgs::PoseStamped* out, Plan::Response* res);
+                     geometry_msgs::PoseStamped* out, Plan::Response* res, const std::atomic<bool>& cancel);
+  struct TransformCancelled {};
+  /// tf2's transform target <- source at `time`, waiting up to `timeout` seconds for it; throws
+  /// tf2::TransformException if there is none, TransformCancelled if `cancel` (may be null) is
+  /// set while it waits.
+  geometry_msgs::TransformStamped lookupTransform(const std::string& target, const std::string& source,
+                                                  const ros::Time& time, double timeout,
+                                                  const std::atomic<bool>* cancel);
 
   std::shared_ptr<amha::lattice::LatticePlanner> currentPlanner() const;
+  /// After a build or a request: returns freed heap to the system once much has been freed
+  /// (a 4000 x 4000 map's planner frees tens of MB that glibc would otherwise keep).
+  void releaseFreedMemory();
   std::shared_ptr<std::atomic<bool>> newCancelFlag();
   void releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& flag);
 
   ros::NodeHandle nh_, pnh_;
   /// The parameters read at start-up. Those dynamic_reconfigure cannot change (frames, queue
-  /// length, map size cap) are read from here, without a lock.
+  /// length, map size cap, release_freed_memory) are read from here, without a lock.
   const PlannerParams startup_;
   mutable std::mutex params_mutex_;  ///< guards params_ (taken inside map_mutex_ when both are)
   std::shared_ptr<const PlannerParams> params_;
@@ -160,6 +185,9 @@ class PlannerServer {
   std::condition_variable planner_built_;  ///< signalled (planner_mutex_) after each build
   std::shared_ptr<amha::lattice::LatticePlanner> planner_;  ///< latest valid map's planner
   std::uint64_t built_version_ = 0;  ///< map_version_ of the last build (refused ones too)
+  /// Why the last full map was refused while there was no planner (NO_MAP says it), else "".
+  std::string refused_map_reason_;
+  std::atomic<bool> stop_builds_{false};  ///< set at shutdown: a running build stops
   std::unique_ptr<LatestJobRunner> builder_;  ///< reset (joined) before the members it uses
 
   std::atomic<std::uint32_t> next_request_id_{1};
@@ -167,8 +195,20 @@ class PlannerServer {
   std::mutex flags_mutex_;
   std::set<std::shared_ptr<std::atomic<bool>>> cancel_flags_;  ///< of queued/running requests
 
+  /// An accepted action goal: its cancel flag and whether its job has started. A goal
+  /// cancelled while it waits in the queue is answered at once by onCancel, and its job then
+  /// does nothing (the queue may be busy for a whole time budget).
+  struct GoalJob {
+    std::shared_ptr<std::atomic<bool>> cancel;
+    std::uint32_t request_id = 0;
+    std::uint64_t ticket = 0;  ///< its place in queue_
+    enum Phase : int { kQueued, kRunning, kDone };
+    std::atomic<int> phase{kQueued};
+  };
   std::mutex goals_mutex_;  ///< also orders setAccepted before the job's first step
-  std::map<std::string, std::shared_ptr<std::atomic<bool>>> goal_cancel_flags_;
+  std::map<std::string, std::shared_ptr<GoalJob>> goal_jobs_;
+
+  FreedMemoryReleaser freed_memory_{std::size_t{32} << 20};
 
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<AmhaPlannerConfig>> reconfigure_;

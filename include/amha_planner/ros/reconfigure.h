@@ -27,11 +27,12 @@ AmhaPlannerConfig configFromParams(const PlannerParams& params);
 bool paramsFromConfig(const AmhaPlannerConfig& config, const PlannerParams& base, const ros::NodeHandle& pnh,
                       PlannerParams* out, std::string* error);
 
-/// Whether a planner can be built with params.lattice on a map of `resolution` metres per cell
-/// (the primitives generated or read and checked against it, the footprint, the cost model): a
-/// build on a small free map. resolution 0 (no map yet): the footprint alone is checked. False
-/// with the lattice's message.
-bool latticeBuilds(const PlannerParams& params, double resolution, std::string* error);
+/// Whether a planner can be built with params.lattice on `map` (the current map): the robot
+/// must fit in it, and a build on a free map of its resolution, as large as the robot, must
+/// pass (the primitives generated or read and checked against the resolution, the footprint
+/// and its sweeps, the cost model). map null (no map yet): the footprint alone is checked.
+/// False with the lattice's message.
+bool latticeBuilds(const PlannerParams& params, const amha::lattice::GridMap* map, std::string* error);
 
 /// "name old -> new" for every parameter that differs, comma-separated (for the log).
 std::string changedParameters(const AmhaPlannerConfig& from, const AmhaPlannerConfig& to);

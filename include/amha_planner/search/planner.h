@@ -70,6 +70,12 @@ struct SearchLimits {
   const std::atomic<bool>* cancel = nullptr;  ///< set to true from any thread to stop
 };
 
+/// The largest weight (w1, w2, epsilon) and weight decrement a planner accepts. Heuristic values
+/// are below 2^32, so w x h stays below 4.3e15: under 2^53 (keys, which are doubles, hold such
+/// integers exactly) and 500 times below the infinite-cost sentinel kInfiniteCost (2.3e18).
+/// Weights far below it already make the search greedy (docs/search.md, "Weights").
+constexpr double kMaxWeight = 1e6;
+
 /// Parameters. A-MHA* uses all of them; the others read what applies:
 ///  - MHA*: w1, w2 (one ImprovePath, no schedule);
 ///  - ARA*: w1 is epsilon, dw1 its decrement (w2 = 1, no inadmissible heuristics);
@@ -147,11 +153,6 @@ class Planner {
   virtual SearchResult search(SearchProblem& problem, const SearchLimits& limits,
                               const SolutionCallback& on_solution = {}) = 0;
 };
-
-/// The largest weight (w1, w2, epsilon) and decrement a planner accepts. Keys g + w1 h stay
-/// exact in a double up to 2^53, and heuristic values are below 2^32: 1e6 leaves a margin of
-/// two thousand, and no useful inflation comes near it.
-constexpr double kMaxWeight = 1e6;
 
 /// Makes the planner for config.algorithm. Throws std::invalid_argument for weights outside
 /// [1, kMaxWeight] (NaN included), decrements outside [0, kMaxWeight], or certified-schedule
