@@ -163,7 +163,11 @@ int planMain(int argc, char** argv) {
     const auto t1 = std::chrono::steady_clock::now();
     SearchLimits table_limits = limits;
     table_limits.time_limit_s = std::max(0.0, time_limit - setup_s);
-    planner->prepareKinematicTables(table_limits);
+    // Only this query's table (its goal heading's, searching backward its start's): a process
+    // that plans once need not build the others.
+    lattice::GoalOptions table_goal;
+    table_goal.any_heading = any_goal_heading;
+    planner->prepareKinematicTables(start, goal, table_goal, table_limits);
     table_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   } catch (const lattice::SetupStopped& e) {
     std::printf("status %s: 0 solutions (%s)\n", statusName(e.status()), e.what());

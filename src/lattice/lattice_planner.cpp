@@ -525,7 +525,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   return result;
 }
 
-bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) {
+bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) const {
   const auto& tables = impl_->graph->kinematicTables();
   if (!tables) return true;
   GridStop stop;
@@ -540,7 +540,7 @@ bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) {
 }
 
 bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
-                                            const SearchLimits& limits) {
+                                            const SearchLimits& limits) const {
   const auto& tables = impl_->graph->kinematicTables();
   if (!tables) return true;
   const LatticeGraph& g = *impl_->graph;

@@ -372,11 +372,29 @@ void PlannerServer::rebuildPlanner() {
   }
   const bool incremental = in.previous != nullptr;
   in.previous = nullptr;  // see installPlanner
+  const std::shared_ptr<lat::LatticePlanner> built = planner;
   const bool have_planner = installPlanner(std::move(planner), in.version, in.full_map ? in.error : "");
   logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), have_planner,
            incremental);
   // The replaced planner's arrays (megabytes per million cells) would otherwise stay resident.
   releaseFreedMemory();
+  if (built) prepareKinematicTables(*built);
+}
+
+void PlannerServer::prepareKinematicTables(const lat::LatticePlanner& planner) {
+  // The tables depend on the primitives and cost model only and are shared by every later
+  // planner (kinematic_table.h), so this builds them once, after the first map, off the
+  // requests' path; a request that comes first builds its own table and this waits for it.
+  const std::size_t before = planner.kinematicTableBytes();
+  const auto t0 = std::chrono::steady_clock::now();
+  amha::SearchLimits limits;
+  limits.cancel = &stop_builds_;
+  const bool complete = planner.prepareKinematicTables(limits);
+  const std::size_t after = planner.kinematicTableBytes();
+  if (after != before || !complete) {
+    ROS_INFO("amha_planner: kinematic tables %s in %.2f s, %.1f MB", complete ? "built" : "stopped",
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), after / 1e6);
+  }
 }
 
 PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {

@@ -378,11 +378,11 @@ class LatticePlanner {
   /// planner with the same primitives and cost model, so only the first planner builds them.
   /// Honours limits' cancel flag and time budget: false if stopped first (a later query then
   /// builds what is missing). Returns true at once when there are no tables.
-  bool prepareKinematicTables(const SearchLimits& limits = SearchLimits());
+  bool prepareKinematicTables(const SearchLimits& limits = SearchLimits()) const;
   /// The same for one query only: the table its goal (searching backward, its start) needs,
   /// e.g. for a process that plans once (amha plan).
   bool prepareKinematicTables(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
-                              const SearchLimits& limits = SearchLimits());
+                              const SearchLimits& limits = SearchLimits()) const;
   /// Bytes of the kinematic tables built so far (shared; 0 without tables).
   std::size_t kinematicTableBytes() const;
   /// The same with StartOptions (an escape from a start in collision): see there. The start

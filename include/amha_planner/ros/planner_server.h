@@ -104,6 +104,8 @@ class PlannerServer {
   /// After updates alone the new planner is built from the current one, recomputing only the
   /// part of it the updates can change.
   void rebuildPlanner();
+  /// On the builder thread, after a build: the kinematic tables every later request needs.
+  void prepareKinematicTables(const amha::lattice::LatticePlanner& planner);
   /// Takes what rebuildPlanner() is to build (map_mutex_), converting only changed cells.
   BuildInput takeUnbuiltMap();
   /// Makes `planner` current if there is one, and marks `version` built either way; without
