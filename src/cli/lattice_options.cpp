@@ -55,6 +55,10 @@ void LatticeOptions::addTo(CLI::App& app) {
   // Both together would silently mean one of them: refuse the pair.
   app.add_flag("--no-turn-term", "no turning term (the default; kept for old scripts)")
       ->excludes(with_turn);
+  app.add_flag("--inflate-heading-terms", inflate_heading_terms,
+               "let the weight inflate the heuristics' heading-aware terms too (the paper's keys g + w h); by "
+               "default it inflates only their heading-blind part, and the block abstraction, kinematic table "
+               "and turning terms count once");
   app.add_flag("--backward", backward, "search from the goal back to the start (as SBPL does by default)");
 }
 
@@ -186,6 +190,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
                                                      : lattice::LatticeConfig::Inadmissible::kKinematic;
   }
   c.anchor_turn_term = o.turn_term;  // --no-turn-term is the default (the two exclude each other)
+  c.inflate_heading_terms = o.inflate_heading_terms;
   c.backward_search = o.backward;
   return out;
 }

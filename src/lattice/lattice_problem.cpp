@@ -44,6 +44,10 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
     scale_[kept] = heur_->scale[k];
   }
   num_inadmissible_ = kept;
+  // Inflation bases only where a heading-aware term is there to be counted once.
+  const bool turn_terms = graph.config().anchor_turn_term && !(any_goal_heading && !backward);
+  bases_ = !graph.config().inflate_heading_terms && grids_[0] != nullptr &&
+           (coarse_ != nullptr || kinematic_.valid() || turn_terms);
   tiles_x_ = (graph.width() + kTile - 1) / kTile;
   const int tiles_y = (graph.height() + kTile - 1) / kTile;
   pages_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y, nullptr);
@@ -172,10 +176,15 @@ const LatticeAction* LatticeProblem::actionBetween(StateId from, StateId to, Cos
   return best;
 }
 
-HeuristicValue LatticeProblem::anchor(int x, int y, int heading) const {
+HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue* base) const {
   const double dx = x - goal_x_, dy = y - goal_y_;
   const double euclid = graph_.euclidUnitsPerCell() * std::sqrt(dx * dx + dy * dy);
-  if (grids_[0] == nullptr) return static_cast<HeuristicValue>(std::min(std::floor(euclid), 4e9));
+  if (base != nullptr) *base = 0;
+  if (grids_[0] == nullptr) {
+    const auto e = static_cast<HeuristicValue>(std::min(std::floor(euclid), 4e9));
+    if (base != nullptr) *base = e;
+    return e;
+  }
   const std::uint32_t g = grids_[0]->at(x, y);
   if (g == kUnreachable) return kInfiniteHeuristic;  // provably cannot reach the goal
   const double a = std::floor(euclid + turn_euclid_[heading]);
@@ -186,17 +195,20 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading) const {
     if (v == kUnreachable) return kInfiniteHeuristic;  // the abstraction proves it unreachable
     c = v;
   }
+  // The heading-blind part: consistent, as a maximum of consistent terms, and <= the anchor.
+  if (base != nullptr) *base = static_cast<HeuristicValue>(std::min(std::max(std::floor(euclid), std::floor(g / kGridFraction)), 4e9));
   if (kinematic_.valid()) c = std::max<double>(c, kinematic_.value(x - goal_x_, y - goal_y_, heading));
   return static_cast<HeuristicValue>(std::min(std::max({a, b, c}), 4e9));
 }
 
+
 void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {
   if (s == virtual_goal_) {  // the goal, or searching backward the start: 0 is exact, or admissible
-    for (std::size_t i = 0; i < count; ++i) h[i] = 0;
+    for (std::size_t i = 0; i < count; ++i) h[i] = 0, last_bases_[i] = 0;
     return;
   }
   const LatticeState st = state(s);
-  h[0] = anchor(st.x, st.y, st.heading);
+  h[0] = anchor(st.x, st.y, st.heading, &last_bases_[0]);
   // The inadmissible ones: each Dijkstra, with the kinematic table (kKinematic) the larger of
   // it and the table, as Smac combines its obstacle and distance heuristics.
   const double k =
@@ -205,6 +217,7 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
     const std::uint32_t g = grids_[i]->at(st.x, st.y);
     h[i] = g == kUnreachable ? kInfiniteHeuristic
                              : static_cast<HeuristicValue>(std::min(std::max(k, g * scale_[i] / kGridFraction), 4e9));
+    last_bases_[i] = g == kUnreachable ? 0 : static_cast<HeuristicValue>(std::min(g * scale_[i] / kGridFraction, 4e9));
   }
 }
 

@@ -187,6 +187,7 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.inadmissible = inadmissible == "paper" ? amha::lattice::LatticeConfig::Inadmissible::kPaper
                                            : amha::lattice::LatticeConfig::Inadmissible::kKinematic;
   l.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.anchor_turn_term);
+  l.inflate_heading_terms = getBool(pnh, "inflate_heading_terms", l.inflate_heading_terms);
   l.backward_search = getBool(pnh, "backward_search", l.backward_search);
   l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
   l.repair_heuristics = getBool(pnh, "repair_heuristics", l.repair_heuristics);

@@ -69,6 +69,7 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   c.coarse_anchor = l.coarse_anchor;
   c.coarse_block = l.coarse_block;
   c.anchor_turn_term = l.anchor_turn_term;
+  c.inflate_heading_terms = l.inflate_heading_terms;
   c.backward_search = l.backward_search;
   c.heuristic_cache_size = l.heuristic_cache_size;
   c.repair_heuristics = l.repair_heuristics;
@@ -175,6 +176,7 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   l.coarse_anchor = c.coarse_anchor;
   l.coarse_block = c.coarse_block;
   l.anchor_turn_term = c.anchor_turn_term;
+  l.inflate_heading_terms = c.inflate_heading_terms;
   l.backward_search = c.backward_search;
   l.heuristic_cache_size = c.heuristic_cache_size;
   l.repair_heuristics = c.repair_heuristics;

@@ -39,11 +39,14 @@ void MhaEngine::resetArrays(std::size_t used) {
 SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
                             const SolutionCallback& on_solution) {
   const std::size_t nh = 1 + std::min(opt_.max_inadmissible, problem.numHeuristics() - 1);
-  if (nh != nh_ || open_.size() != nh) {
+  const bool bases = problem.hasInflationBases();
+  if (nh != nh_ || bases != bases_ || open_.size() != nh) {
     // A different heuristic count changes the record layout: start from empty records.
     nh_ = nh;
+    bases_ = bases;
+    hw_ = nh_ * (bases_ ? 2 : 1);
     member_words_ = (nh_ + 31) / 32;
-    stride_ = kHeaderWords + nh_ + member_words_;
+    stride_ = kHeaderWords + hw_ + member_words_;
     stride_ += stride_ % 2;
     open_.assign(nh_, OpenQueue());
     rec_.clear();
@@ -128,7 +131,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
 void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) {
   if (opt_.weight_schedule == WeightSchedule::kCertified) {
     // Below the bound already earned, so that the iteration must expand (and may improve the
-    // path): its stop test g(goal) <= w2 min(g + w1 h0) fails while w1 w2 < cost / LB.
+    // path): its stop test g(goal) <= w2 min key_0 fails while w1 w2 < cost / LB (key_0 <= w1 (g + h0)).
     const double c = std::min(certified, w1_ * w2_);
     double bound = 1.0 + opt_.certified_ratio * (c - 1.0);
     if (bound - 1.0 <= opt_.final_gap) bound = 1.0;
@@ -137,7 +140,7 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
     return;
   }
   // The paper's decrements. An iteration whose stop test already holds after the re-keying
-  // (g(goal) <= w2 min over OPEN_0 u INCONS of g + w1 h0) expands nothing and reports the same
+  // (g(goal) <= w2 min over OPEN_0 u INCONS of the anchor's key) expands nothing and reports the same
   // path again: it is skipped (the search after it is the same), so that a large w1 does not
   // report millions of copies. The test's right side falls with every decrement, so the
   // iterations that stop at once come first: a binary search finds the first that does not.
@@ -154,7 +157,7 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
     double min_key = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < members_.size(); ++i) {
       const StateId s = members_[i];
-      min_key = std::min(min_key, static_cast<double>(g(s)) + w1 * static_cast<double>(h(s, 0)));
+      min_key = std::min(min_key, keyAt(s, 0, w1));
     }
     return goal_g < kInfiniteCost && static_cast<double>(goal_g) <= w2 * min_key;
   };
@@ -179,6 +182,7 @@ void MhaEngine::generate(StateId s) {
   // Straight into the record: a copy of a few words through a buffer became a libc memmove
   // call (2 % of the time on Korf's 15-puzzles).
   problem_->heuristics(s, rec(s) + kHeaderWords, nh_);
+  if (bases_) problem_->bases(s, rec(s) + kHeaderWords + nh_, nh_);
   flags(s) |= kGenerated;
   ++generated_;
 }

@@ -88,9 +88,18 @@ class MhaEngine : public SearchBase {
   std::uint32_t& flags(StateId s) { return rec(s)[3]; }
   std::uint32_t flags(StateId s) const { return rec(s)[3]; }
   HeuristicValue h(StateId s, std::size_t i) const { return rec(s)[kHeaderWords + i]; }
+  // Queue i's key at weight w: g + w h_i, or with inflation bases b_i (after the h_i in the
+  // record; SearchProblem::hasInflationBases) g + h_i + (w - 1) b_i. For the anchor that is
+  // g + w h_w with h_w = (1 - 1/w) b_0 + h_0 / w, consistent and admissible, so every bound
+  // holds with h_w as the anchor; the lower bounds still use h_0 itself.
+  double keyAt(StateId s, std::size_t i, double w) const {
+    const double g0 = static_cast<double>(g(s)), hi = static_cast<double>(h(s, i));
+    if (!bases_) return g0 + w * hi;
+    return g0 + hi + (w - 1.0) * static_cast<double>(rec(s)[kHeaderWords + nh_ + i]);
+  }
   QueueEntry key(StateId s, std::size_t i) const {
     const HeuristicValue hv = h(s, i);
-    return QueueEntry{static_cast<double>(g(s)) + w1_ * static_cast<double>(hv), hv, s};
+    return QueueEntry{keyAt(s, i, w1_), hv, s};
   }
   // Expand's admission test for OPEN_i (i >= 1), given key_i: finite h_i and key_i <= w2 * key_0.
   bool admits(const QueueEntry& key_i, double key0) const {
@@ -99,14 +108,14 @@ class MhaEngine : public SearchBase {
 
   // Queue membership.
   bool inOpen(StateId s, std::size_t i) const {
-    return (rec(s)[kHeaderWords + nh_ + i / 32] >> (i % 32)) & 1u;
+    return (rec(s)[kHeaderWords + hw_ + i / 32] >> (i % 32)) & 1u;
   }
-  void setInOpen(StateId s, std::size_t i) { rec(s)[kHeaderWords + nh_ + i / 32] |= 1u << (i % 32); }
+  void setInOpen(StateId s, std::size_t i) { rec(s)[kHeaderWords + hw_ + i / 32] |= 1u << (i % 32); }
   void clearInOpen(StateId s, std::size_t i) {
-    rec(s)[kHeaderWords + nh_ + i / 32] &= ~(1u << (i % 32));
+    rec(s)[kHeaderWords + hw_ + i / 32] &= ~(1u << (i % 32));
   }
   void clearAllOpen(StateId s) {
-    std::uint32_t* m = rec(s) + kHeaderWords + nh_;
+    std::uint32_t* m = rec(s) + kHeaderWords + hw_;
     for (std::size_t w = 0; w < member_words_; ++w) m[w] = 0;
   }
   void prefetchTopRecord(std::size_t i) const {
@@ -157,6 +166,8 @@ class MhaEngine : public SearchBase {
 
   MhaEngineOptions opt_;
   std::size_t nh_ = 1;            // heuristics in use, anchor included
+  bool bases_ = false;            // SearchProblem::hasInflationBases: b_i after the h_i
+  std::size_t hw_ = 1;            // record words of heuristic values: nh_, 2 nh_ with bases
   std::size_t member_words_ = 1;  // words of membership bits per record
   std::size_t stride_ = kHeaderWords + 2;
   double w1_ = 1.0, w2_ = 1.0;

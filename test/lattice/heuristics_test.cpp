@@ -8,6 +8,7 @@
 
 #include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
+#include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "test_support.h"
@@ -204,9 +205,12 @@ void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, i
     for (const LatticeAction* a = f.graph->actionsBegin(h); a != f.graph->actionsEnd(h); ++a) {
       const Cost c = f.graph->edgeCost(x, y, *a);
       if (c == kInvalidEdge) continue;
-      HeuristicValue hp = p.anchor(x, y, h);
-      HeuristicValue hq = p.anchor(x + a->dx, y + a->dy, a->end_heading);
-      if (backward) std::swap(hp, hq);  // the search moves from q to p
+      // With the inflation base (the heading-blind part, LatticeProblem::hasInflationBases),
+      // which must be consistent too and at most the anchor.
+      HeuristicValue bp = 0, bq = 0;
+      HeuristicValue hp = p.anchor(x, y, h, &bp);
+      HeuristicValue hq = p.anchor(x + a->dx, y + a->dy, a->end_heading, &bq);
+      if (backward) std::swap(hp, hq), std::swap(bp, bq);  // the search moves from q to p
       ++edges;
       if (hq == kInfiniteHeuristic) {
         ASSERT_EQ(hp, kInfiniteHeuristic) << "a state that reaches a dead end must be a dead end";
@@ -216,6 +220,8 @@ void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, i
       ASSERT_LE(static_cast<Cost>(hp), c + static_cast<Cost>(hq))
           << "(" << x << "," << y << "," << h << ") -> (" << x + a->dx << "," << y + a->dy << "," << a->end_heading
           << ") backward " << backward;
+      ASSERT_LE(bp, hp);
+      ASSERT_LE(static_cast<Cost>(bp), c + static_cast<Cost>(bq)) << "inflation base inconsistent";
     }
   }
   EXPECT_GT(edges, samples / 4);
@@ -256,6 +262,36 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
     checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
     checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);
   }
+}
+
+// Weighted A* (epsilon = 3) on SBPL's cubicle with the PR2's primitives (turns in place):
+// with the heading-aware terms inflated, its first path costs many more expansions, as turning
+// early pays (LatticeConfig::inflate_heading_terms); both paths stay within the bound.
+TEST(AnchorTest, HeadingTermsCountedOnceSaveWeightedExpansions) {
+  AMHA_REQUIRE_SHARED_DATA(data);
+  SbplEnvironment env;
+  auto cubicle = std::make_shared<GridMap>(loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
+  LatticeConfig c;
+  c.mprim_file = data + "/sbpl/pr2.mprim";
+  c.footprint = test::rectangle(0.01, 0.01);
+  useSbplCostModel(env, c);
+  PlannerConfig wastar = defaultConfig(Algorithm::kWeightedAStar);
+  wastar.w1 = 3.0;
+  std::uint64_t expansions[2] = {0, 0};
+  Cost costs[2] = {0, 0};
+  for (int inflate = 0; inflate < 2; ++inflate) {
+    c.inflate_heading_terms = inflate == 1;
+    LatticePlanner planner(cubicle, c);
+    const PlanResult r = planner.plan(env.start, env.goal, wastar, SearchLimits());
+    ASSERT_FALSE(r.search.solutions.empty());
+    expansions[inflate] = r.search.solutions.front().expansions;
+    costs[inflate] = r.search.solutions.front().cost;
+    EXPECT_LE(r.search.solutions.front().certified_bound, 3.0);
+  }
+  std::printf("[ weighted ] cubicle, epsilon 3: %llu expansions (cost %lld) with the heading terms once, %llu "
+              "(cost %lld) inflated\n", static_cast<unsigned long long>(expansions[0]), static_cast<long long>(costs[0]),
+              static_cast<unsigned long long>(expansions[1]), static_cast<long long>(costs[1]));
+  EXPECT_LT(expansions[0] * 3, expansions[1] * 2);
 }
 
 // Without its turning term the anchor stays consistent (forward and backward), no longer

@@ -33,6 +33,13 @@ class ExplicitGraph : public SearchProblem {
   }
   bool smallIntegerKeys() const override { return small_keys; }
   std::size_t size() const { return adj.size(); }
+
+  /// Inflation bases b[state][i] (SearchProblem::hasInflationBases), if not empty.
+  std::vector<std::vector<HeuristicValue>> b;
+  bool hasInflationBases() const override { return !b.empty(); }
+  void bases(StateId s, HeuristicValue* out, std::size_t count) override {
+    for (std::size_t i = 0; i < count; ++i) out[i] = b[s][i];
+  }
 };
 
 /// Exact cost-to-goal of every state (Dijkstra on reversed edges); kInfiniteCost if unreachable.

@@ -44,6 +44,14 @@ class LatticeProblem final : public SearchProblem {
   void successors(StateId s, std::vector<Edge>& out) override;
   std::size_t numHeuristics() const override { return 1 + static_cast<std::size_t>(num_inadmissible_); }
   void heuristics(StateId s, HeuristicValue* h, std::size_t count) override;
+  /// Unless LatticeConfig::inflate_heading_terms (and only with a heading-aware term in the
+  /// anchor): a weight inflates only the heuristics' heading-blind parts, the anchor's larger
+  /// of its Euclidean and grid terms and each inadmissible heuristic's Dijkstra.
+  bool hasInflationBases() const override { return bases_; }
+  void bases(StateId s, HeuristicValue* b, std::size_t count) override {
+    (void)s;
+    for (std::size_t i = 0; i < count; ++i) b[i] = last_bases_[i];
+  }
   std::size_t memoryBytes() const override;
 
   /// Starts instead at a virtual state joined to each of `exits` (collision-free states, each
@@ -75,8 +83,9 @@ class LatticeProblem final : public SearchProblem {
   /// Anchor value (admissible and consistent): with the grid anchor, the largest of
   /// floor(Euclidean + turning term), floor(grid + turning term), the block abstraction's
   /// cost-to-go and the kinematic table's value; without it, the Euclidean distance alone (the
-  /// paper's anchor). See LatticeGraph::computeAnchorScales and kinematic_table.h.
-  HeuristicValue anchor(int x, int y, int heading) const;
+  /// paper's anchor). See LatticeGraph::computeAnchorScales and kinematic_table.h. `base`, if
+  /// given, receives its heading-blind part (hasInflationBases).
+  HeuristicValue anchor(int x, int y, int heading, HeuristicValue* base = nullptr) const;
 
  private:
   const LatticeGraph& graph_;
@@ -85,6 +94,8 @@ class LatticeProblem final : public SearchProblem {
   double scale_[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};                                  // their scales
   const std::uint32_t* coarse_ = nullptr;
   KinematicLookup kinematic_;
+  bool bases_ = false;                              // hasInflationBases()
+  HeuristicValue last_bases_[kNumGridKinds] = {};  // the bases of the state heuristics() saw last
   bool kinematic_inadmissible_ = false;  // the inadmissible heuristics take the table too
   int num_inadmissible_;
   bool backward_ = false;

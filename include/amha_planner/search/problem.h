@@ -32,6 +32,22 @@ class SearchProblem {
   /// Writes h_0(s) .. h_{count-1}(s) into `h` (count <= numHeuristics()). h_0(goal) must be 0.
   virtual void heuristics(StateId s, HeuristicValue* h, std::size_t count) = 0;
 
+  /// True if the heuristics have inflation bases (bases()): for each h_i, a heuristic b_i <= h_i
+  /// that a weight inflates in h_i's place. Queue i's key at weight w is then
+  /// g + h_i + (w - 1) b_i instead of g + w h_i: only b_i is inflated, h_i's surplus over it
+  /// counts once. For the anchor, b_0 must be consistent: the key is then g + w h_w with
+  /// h_w = (1 - 1/w) b_0 + h_0 / w, a convex combination of two consistent heuristics, so itself
+  /// consistent, and admissible as b_0 <= h_0: every bound holds, and at w = 1 it is A*'s. For
+  /// terms that a weight turns into a pull: inflated, a turning cost in h rewards turning early
+  /// (w times what the turn saves in h, for once what it costs).
+  virtual bool hasInflationBases() const { return false; }
+  /// Writes b_0(s) .. b_{count-1}(s) (see hasInflationBases); called right after
+  /// heuristics(s, ...) for the same state and count.
+  virtual void bases(StateId s, HeuristicValue* b, std::size_t count) {
+    (void)s;
+    for (std::size_t i = 0; i < count; ++i) b[i] = 0;
+  }
+
   /// True if edge costs and heuristic values are small integers, so that every key
   /// g + w * h stays below a few million: the search may then keep its queues as arrays of
   /// buckets indexed by key instead of heaps.
