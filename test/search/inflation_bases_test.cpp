@@ -11,7 +11,6 @@ namespace amha {
 namespace {
 
 using testing::ExplicitGraph;
-using testing::GenOptions;
 
 // b_i = floor(h_i * num / den): for the anchor a scaled consistent heuristic, so consistent
 // (integer costs), and <= h_i. Infinite values keep base 0.
@@ -25,18 +24,7 @@ void setBases(ExplicitGraph& g, int num, int den) {
   }
 }
 
-std::vector<ExplicitGraph> graphs() {
-  std::vector<ExplicitGraph> out;
-  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
-    GenOptions o;
-    o.seed = seed;
-    o.n_inadmissible = 3;
-    o.anchor_scale = seed % 2 ? 1.0 : 0.7;
-    out.push_back(testing::randomGrid(24, 18, 0.25, o));
-    out.push_back(testing::randomGraph(300, 3, o));
-  }
-  return out;
-}
+std::vector<ExplicitGraph> graphs() { return testing::gridsAndGraphs(24, 18, 300, 1.0, 0.7, false); }
 
 const Algorithm kAll[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
                           Algorithm::kAnaStar,  Algorithm::kWeightedAStar, Algorithm::kAStar};

@@ -112,6 +112,21 @@ ExplicitGraph randomGrid(int width, int height, double obstacle_prob, const GenO
   return g;
 }
 
+std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double odd_scale, double even_scale,
+                                          bool buckets) {
+  std::vector<ExplicitGraph> out;
+  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
+    GenOptions o;
+    o.seed = seed;
+    o.n_inadmissible = 3;
+    o.anchor_scale = seed % 2 ? odd_scale : even_scale;
+    out.push_back(randomGrid(width, height, 0.25, o));
+    out.back().small_keys = buckets && seed % 3 == 0;
+    out.push_back(randomGraph(n, 3, o));
+  }
+  return out;
+}
+
 ExplicitGraph randomGraph(int n, int degree, const GenOptions& opt) {
   std::mt19937 rng(opt.seed);
   std::uniform_int_distribution<int> node(0, n - 1);

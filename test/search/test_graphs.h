@@ -67,6 +67,12 @@ ExplicitGraph randomGrid(int width, int height, double obstacle_prob, const GenO
 /// Random directed graph with n states, about `degree` out-edges each, weights 1..100.
 ExplicitGraph randomGraph(int n, int degree, const GenOptions& opt);
 
+/// For seeds 1..10: a width x height randomGrid and a randomGraph of n states, each with 3
+/// inadmissible heuristics and the anchor scaled by odd_scale (odd seeds) or even_scale; the
+/// grids of every third seed allow bucket queues when `buckets`.
+std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double odd_scale, double even_scale,
+                                          bool buckets);
+
 /// Checks a solution: path from start to goal along edges, cost equals the sum of the cheapest
 /// edges used, bounds ordered 1 <= certified <= nominal, cost <= certified * optimal.
 /// Returns "" when valid, else a description of the problem.

@@ -13,21 +13,8 @@ namespace amha {
 namespace {
 
 using testing::ExplicitGraph;
-using testing::GenOptions;
 
-std::vector<ExplicitGraph> graphs() {
-  std::vector<ExplicitGraph> out;
-  for (std::uint32_t seed = 1; seed <= 10; ++seed) {
-    GenOptions o;
-    o.seed = seed;
-    o.n_inadmissible = 3;
-    o.anchor_scale = seed % 2 ? 0.6 : 1.0;
-    out.push_back(testing::randomGrid(28, 22, 0.25, o));
-    out.back().small_keys = seed % 3 == 0;
-    out.push_back(testing::randomGraph(400, 3, o));
-  }
-  return out;
-}
+std::vector<ExplicitGraph> graphs() { return testing::gridsAndGraphs(28, 22, 400, 0.6, 1.0, true); }
 
 // Every solution valid and within its bounds, costs never rising, the last proven optimal, and
 // every solution after the first but the proof coming from an iteration that expanded states.
