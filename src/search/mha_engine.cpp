@@ -45,7 +45,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     nh_ = nh;
     bases_ = bases;
     hw_ = nh_ * (bases_ ? 2 : 1);
-    member_words_ = (nh_ + 31) / 32;
+    member_words_ = nh_ <= kFlagMembers ? 0 : (nh_ + 31) / 32;
     stride_ = kHeaderWords + hw_ + member_words_;
     stride_ += stride_ % 2;
     open_.assign(nh_, OpenQueue());

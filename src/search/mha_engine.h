@@ -63,7 +63,9 @@ class MhaEngine : public SearchBase {
   // Per-state data lives in one record per state (array of structs), so that touching a state
   // costs one or two cache misses instead of one per array. Record layout in 32-bit words:
   //   [0..1] kInfiniteCost - g (int64)  [2] ~parent  [3] flags  [4 .. 4+nh) h_i
-  //   [4+nh .. 4+nh+mw) membership bits: bit i set <=> the state is in OPEN_i
+  //   [4+nh .. 4+2nh) the inflation bases b_i, if the problem has them (hw = 2 nh, else nh)
+  //   [4+hw .. 4+hw+mw) membership bits: bit i set <=> the state is in OPEN_i; with at most 28
+  //   queues mw = 0 and they are bits 4 + i of the flags word
   // padded to an even stride so that g stays 8-byte aligned. g and parent are stored so that a
   // new state's record (g = infinity, no parent, nothing set) is all zero bits: the records
   // then need no initialising, and their pages no touching, until a state is generated.
@@ -107,14 +109,26 @@ class MhaEngine : public SearchBase {
   }
 
   // Queue membership.
-  bool inOpen(StateId s, std::size_t i) const {
-    return (rec(s)[kHeaderWords + hw_ + i / 32] >> (i % 32)) & 1u;
+  // Up to kFlagMembers queues keep their bits in the flags word, above the flags (a word less
+  // per record); more have words of their own after the heuristic values.
+  static constexpr std::size_t kFlagBits = 4, kFlagMembers = 32 - kFlagBits;
+  std::uint32_t* memberWord(StateId s, std::size_t i) {
+    return member_words_ == 0 ? &rec(s)[3] : &rec(s)[kHeaderWords + hw_ + i / 32];
   }
-  void setInOpen(StateId s, std::size_t i) { rec(s)[kHeaderWords + hw_ + i / 32] |= 1u << (i % 32); }
-  void clearInOpen(StateId s, std::size_t i) {
-    rec(s)[kHeaderWords + hw_ + i / 32] &= ~(1u << (i % 32));
+  const std::uint32_t* memberWord(StateId s, std::size_t i) const {
+    return member_words_ == 0 ? &rec(s)[3] : &rec(s)[kHeaderWords + hw_ + i / 32];
   }
+  std::uint32_t memberBit(std::size_t i) const {
+    return member_words_ == 0 ? 1u << (kFlagBits + i) : 1u << (i % 32);
+  }
+  bool inOpen(StateId s, std::size_t i) const { return (*memberWord(s, i) & memberBit(i)) != 0; }
+  void setInOpen(StateId s, std::size_t i) { *memberWord(s, i) |= memberBit(i); }
+  void clearInOpen(StateId s, std::size_t i) { *memberWord(s, i) &= ~memberBit(i); }
   void clearAllOpen(StateId s) {
+    if (member_words_ == 0) {
+      rec(s)[3] &= (1u << kFlagBits) - 1;
+      return;
+    }
     std::uint32_t* m = rec(s) + kHeaderWords + hw_;
     for (std::size_t w = 0; w < member_words_; ++w) m[w] = 0;
   }
