@@ -539,10 +539,29 @@ LatticeSolution smoothedSolution(const LatticeSolution& raw, const SmoothedPath&
   return s;
 }
 
+SmoothedPath SmoothedStream::smoothAfterEscape(const LatticeSolution& raw) const {
+  // The escape's motions cross the inscribed and obstacle cells the start stands on, which the
+  // smoother's collision test refuses by design: they are kept as they are, and the rest of the
+  // path, from the first collision-free pose on, is smoothed. The cost is the escape's plus the
+  // rest's, so it stays at most the search's.
+  const std::size_t k = raw.escape_poses - 1;  // the first collision-free pose
+  if (k >= raw.poses.size()) throw std::invalid_argument("escape_poses beyond the path");
+  SmoothedPath out;
+  if (raw.poses.size() - k >= 2) {
+    out = smoother_.smooth(std::vector<Pose2D>(raw.poses.begin() + static_cast<std::ptrdiff_t>(k), raw.poses.end()));
+  } else {
+    out.poses.assign(1, raw.poses.back());
+  }
+  out.poses.insert(out.poses.begin(), raw.poses.begin(), raw.poses.begin() + static_cast<std::ptrdiff_t>(k));
+  out.cost += raw.escape_cost;
+  out.lattice_cost += raw.escape_cost;
+  return out;
+}
+
 const SmoothedStream::Step& SmoothedStream::add(const LatticeSolution& raw) {
   // A-MHA* and ARA* report a path again when only its bound tightens: smoothed once.
   if (!started_ || raw.search.path != last_ids_) {
-    step_.smoothed = smoother_.smooth(raw.poses);
+    step_.smoothed = raw.escape_poses > 0 ? smoothAfterEscape(raw) : smoother_.smooth(raw.poses);
     last_ids_ = raw.search.path;
   }
   LatticeSolution own = smoothedSolution(raw, step_.smoothed);

@@ -12,6 +12,7 @@
 #include "amha_planner/lattice/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/path_smoother.h"
 #include "amha_planner/lattice/lattice_problem.h"
 #include "amha_planner/lattice/start_escape.h"
 #include "path_validator.h"
@@ -285,6 +286,27 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
   EXPECT_NE(r.escape_message.find("leaves it by"), std::string::npos) << r.escape_message;
   EXPECT_NE(r.escape_message.find("relative to the optimum"), std::string::npos) << r.escape_message;
   EXPECT_NEAR(best.poses.back().x, 3.525, 0.03);
+
+  // Smoothed, as the server publishes it: the escape as it is, the rest smoothed, the cost at
+  // most the search's (the smoother alone refuses the escape's motions: they collide).
+  {
+    const PathSmoother smoother(planner.graph());
+    EXPECT_THROW(smoother.smooth(best.poses), std::invalid_argument);
+    SmoothedStream stream(smoother);
+    for (const LatticeSolution& raw : r.solutions) {
+      const SmoothedStream::Step& step = stream.add(raw);
+      const std::vector<Pose2D>& p = step.published.poses;
+      ASSERT_GE(p.size(), raw.escape_poses);
+      for (std::size_t k = 0; k < raw.escape_poses; ++k) {
+        EXPECT_TRUE(p[k].x == raw.poses[k].x && p[k].y == raw.poses[k].y && p[k].theta == raw.poses[k].theta) << k;
+      }
+      EXPECT_NEAR(p.back().x, raw.poses.back().x, 1e-9);
+      EXPECT_NEAR(p.back().y, raw.poses.back().y, 1e-9);
+      EXPECT_LE(step.published.search.cost, raw.search.cost);
+      EXPECT_GE(step.published.search.cost, raw.escape_cost);
+      EXPECT_LE(step.published.search.certified_bound, raw.search.nominal_bound);
+    }
+  }
 
   // Too small a tolerance: only the start's own (inscribed) cell, where no heading is free; the
   // message says so. (One cell more is enough: a quarter turn there frees the rear.)

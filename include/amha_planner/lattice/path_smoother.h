@@ -147,10 +147,12 @@ class SmoothedStream {
     bool republished = false;   ///< published is an earlier solution's smoothed path
     bool same_as_previous = false;  ///< published.poses are the previous step's
   };
-  /// Throws what PathSmoother::smooth throws.
+  /// Throws what PathSmoother::smooth throws. A path that leaves a start in collision
+  /// (raw.escape_poses > 0) keeps its escape as it is; the rest is smoothed.
   const Step& add(const LatticeSolution& raw);
 
  private:
+  SmoothedPath smoothAfterEscape(const LatticeSolution& raw) const;
   const PathSmoother& smoother_;
   Step step_;
   std::vector<StateId> last_ids_;  // of the last lattice path smoothed
