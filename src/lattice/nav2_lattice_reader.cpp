@@ -171,7 +171,7 @@ PrimitiveSet readNav2Lattice(std::istream& in, const std::string& name, double m
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e999
     std::string what = e.what();
     const std::size_t at = what.find("] ");
     throw LatticeError(LatticeError::Kind::kPrimitives,

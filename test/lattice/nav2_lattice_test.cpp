@@ -122,6 +122,9 @@ TEST(Nav2Lattice, CorruptedFilesGiveNamedErrors) {
   expectError(errorFor(good, 0.05), "t.json: lattice_metadata: 'grid_resolution' 0.1 does not match the map's resolution 0.05");
   expectError(errorFor(std::string("{\"lattice_metadata\": {,}")), "t.json: not valid JSON: parse error at line 1, column 23");
   expectError(errorFor(std::string("[1, 2]")), "t.json: the document: must be a JSON object, not [1,2]");
+  // A number no double holds (found by the fuzzer: the JSON library throws out_of_range).
+  expectError(errorFor(std::string("{\"lattice_metadata\": {\"turning_radius\": 2.35e2345}}")),
+              "t.json: not valid JSON: number overflow parsing '2.35e2345'");
   expectError(errorFor(changed([](auto& d) { d.erase("primitives"); })), "t.json: the document: missing 'primitives'");
   expectError(errorFor(changed([](auto& d) { d["lattice_metadata"].erase("heading_angles"); })),
               "lattice_metadata: missing 'heading_angles'");
