@@ -124,7 +124,8 @@ int benchPrimitivesMain(int argc, char** argv) {
       } else {
         s.config.mprim_file = s.spec;
       }
-      const lattice::PrimitiveSet p = lattice::primitivesFor(s.config, loaded.map->resolution);
+      s.planner.reset(new lattice::LatticePlanner(loaded.map, s.config));
+      const lattice::PrimitiveSet& p = s.planner->graph().primitives();  // the set the planner uses
       s.primitives = p.primitives.size();
       s.min_per_heading = p.primitives.size();
       for (int h = 0; h < p.num_headings; ++h) {
@@ -132,14 +133,12 @@ int benchPrimitivesMain(int argc, char** argv) {
         s.min_per_heading = std::min(s.min_per_heading, r.second - r.first);
         s.max_per_heading = std::max(s.max_per_heading, r.second - r.first);
       }
-      s.planner.reset(new lattice::LatticePlanner(loaded.map, s.config));
       sets.push_back(std::move(s));
     }
     if (!queries_json.empty()) {
       queries = readQueries(queries_json);
     } else {
-      const lattice::LatticeGraph graph(loaded.map, sets.front().config);
-      queries = randomQueries(graph, count, seed, min_distance);
+      queries = randomQueries(sets.front().planner->graph(), count, seed, min_distance);
     }
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha bench primitives: " << e.what() << "\n";

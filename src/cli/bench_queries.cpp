@@ -43,11 +43,10 @@ int benchQueriesMain(int argc, char** argv) {
     return kExitUsage;
   }
   std::vector<Query> queries;
-  std::unique_ptr<lattice::LatticeGraph> graph;
   try {
     const LoadedLattice loaded = loadLattice(lo);
-    graph.reset(new lattice::LatticeGraph(loaded.map, loaded.config));
-    queries = randomQueries(*graph, count, seed, min_distance);
+    const lattice::LatticeGraph graph(loaded.map, loaded.config);
+    queries = randomQueries(graph, count, seed, min_distance);
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha bench queries: " << e.what() << "\n";
     return exitCodeFor(e);

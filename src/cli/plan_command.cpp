@@ -144,6 +144,9 @@ int planMain(int argc, char** argv) {
 
   LoadedLattice loaded;
   lattice::Pose2D start, goal;
+  lattice::GoalOptions goal_options;
+  goal_options.tolerance = goal_tolerance;
+  goal_options.any_heading = any_goal_heading;
   std::unique_ptr<lattice::LatticePlanner> planner;
   double setup_s = 0.0, table_s = 0.0;
   try {
@@ -165,9 +168,7 @@ int planMain(int argc, char** argv) {
     table_limits.time_limit_s = std::max(0.0, time_limit - setup_s);
     // Only this query's table (its goal heading's, searching backward its start's): a process
     // that plans once need not build the others.
-    lattice::GoalOptions table_goal;
-    table_goal.any_heading = any_goal_heading;
-    planner->prepareKinematicTables(start, goal, table_goal, table_limits);
+    planner->prepareKinematicTables(start, goal, goal_options, table_limits);
     table_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   } catch (const lattice::SetupStopped& e) {
     std::printf("status %s: 0 solutions (%s)\n", statusName(e.status()), e.what());
@@ -212,9 +213,6 @@ int planMain(int argc, char** argv) {
     }
     std::fflush(stdout);
   };
-  lattice::GoalOptions goal_options;
-  goal_options.tolerance = goal_tolerance;
-  goal_options.any_heading = any_goal_heading;
   lattice::StartOptions start_options;
   start_options.tolerance = start_tolerance;
   start_options.penalty = escape_penalty;

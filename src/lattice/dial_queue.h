@@ -45,7 +45,6 @@ class DialQueue {
   std::size_t size_ = 0;
 };
 
-
 }  // namespace detail
 }  // namespace lattice
 }  // namespace amha

@@ -207,6 +207,11 @@ GridStop stopFor(const SearchLimits& limits, std::chrono::steady_clock::time_poi
   return stop;
 }
 
+/// Which kinematic tables a search uses: to the goal, or searching backward from the start.
+KinematicTables::Direction tableDirection(bool backward) {
+  return backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal;
+}
+
 }  // namespace
 
 LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config)
@@ -479,9 +484,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   KinematicLookup kinematic;
   if (g.kinematicTables()) {
     double seconds = 0.0;
-    kinematic = g.kinematicTables()->lookup(
-        backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, table_heading, &stop,
-        &seconds);
+    kinematic = g.kinematicTables()->lookup(tableDirection(backward), table_heading, &stop, &seconds);
     result.heuristic_seconds += seconds;
     if (!kinematic.valid()) {
       result.search.status = stoppedStatus(stop);
@@ -528,15 +531,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
 bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) const {
   const auto& tables = impl_->graph->kinematicTables();
   if (!tables) return true;
-  GridStop stop;
-  stop.cancel = limits.cancel;
-  if (limits.time_limit_s < 1e9) {
-    stop.deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                            std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
-  }
-  const auto direction = impl_->graph->config().backward_search ? KinematicTables::Direction::kFromStart
-                                                                 : KinematicTables::Direction::kToGoal;
-  return tables->prepare(direction, &stop);
+  const GridStop stop = stopFor(limits, std::chrono::steady_clock::now());
+  return tables->prepare(tableDirection(impl_->graph->config().backward_search), &stop);
 }
 
 bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
@@ -548,14 +544,8 @@ bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& g
   int x = 0, y = 0, heading = 0;
   if (!g.poseToState(backward ? start : goal, &x, &y, &heading)) return true;  // plan() will refuse it
   if (goal_options.any_heading && !backward) heading = kAnyHeading;
-  GridStop stop;
-  stop.cancel = limits.cancel;
-  if (limits.time_limit_s < 1e9) {
-    stop.deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                            std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
-  }
-  return tables->lookup(backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, heading,
-                        &stop).valid();
+  const GridStop stop = stopFor(limits, std::chrono::steady_clock::now());
+  return tables->lookup(tableDirection(backward), heading, &stop).valid();
 }
 
 std::size_t LatticePlanner::kinematicTableBytes() const {

@@ -201,7 +201,6 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue*
   return static_cast<HeuristicValue>(std::min(std::max({a, b, c}), 4e9));
 }
 
-
 void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {
   if (s == virtual_goal_) {  // the goal, or searching backward the start: 0 is exact, or admissible
     for (std::size_t i = 0; i < count; ++i) h[i] = 0, last_bases_[i] = 0;
@@ -215,9 +214,14 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
       count > 1 && kinematic_inadmissible_ ? kinematic_.value(st.x - goal_x_, st.y - goal_y_, st.heading) : 0.0;
   for (std::size_t i = 1; i < count; ++i) {
     const std::uint32_t g = grids_[i]->at(st.x, st.y);
-    h[i] = g == kUnreachable ? kInfiniteHeuristic
-                             : static_cast<HeuristicValue>(std::min(std::max(k, g * scale_[i] / kGridFraction), 4e9));
-    last_bases_[i] = g == kUnreachable ? 0 : static_cast<HeuristicValue>(std::min(g * scale_[i] / kGridFraction, 4e9));
+    if (g == kUnreachable) {
+      h[i] = kInfiniteHeuristic;
+      last_bases_[i] = 0;
+      continue;
+    }
+    const double d = g * scale_[i] / kGridFraction;  // the Dijkstra: the inflation base
+    h[i] = static_cast<HeuristicValue>(std::min(std::max(k, d), 4e9));
+    last_bases_[i] = static_cast<HeuristicValue>(std::min(d, 4e9));
   }
 }
 

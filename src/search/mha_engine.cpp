@@ -46,6 +46,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
     bases_ = bases;
     hw_ = nh_ * (bases_ ? 2 : 1);
     member_words_ = nh_ <= kFlagMembers ? 0 : (nh_ + 31) / 32;
+    member_word_ = member_words_ == 0 ? 3 : kHeaderWords + hw_;
+    member_shift_ = member_words_ == 0 ? kFlagBits : 0;
     stride_ = kHeaderWords + hw_ + member_words_;
     stride_ += stride_ % 2;
     open_.assign(nh_, OpenQueue());

@@ -111,19 +111,14 @@ class MhaEngine : public SearchBase {
   // Queue membership.
   // Up to kFlagMembers queues keep their bits in the flags word, above the flags (a word less
   // per record); more have words of their own after the heuristic values.
+  // Queue i's bit is bit (i + member_shift_) % 32 of word member_word_ + (i + member_shift_) / 32.
   static constexpr std::size_t kFlagBits = 4, kFlagMembers = 32 - kFlagBits;
-  std::uint32_t* memberWord(StateId s, std::size_t i) {
-    return member_words_ == 0 ? &rec(s)[3] : &rec(s)[kHeaderWords + hw_ + i / 32];
-  }
-  const std::uint32_t* memberWord(StateId s, std::size_t i) const {
-    return member_words_ == 0 ? &rec(s)[3] : &rec(s)[kHeaderWords + hw_ + i / 32];
-  }
-  std::uint32_t memberBit(std::size_t i) const {
-    return member_words_ == 0 ? 1u << (kFlagBits + i) : 1u << (i % 32);
-  }
-  bool inOpen(StateId s, std::size_t i) const { return (*memberWord(s, i) & memberBit(i)) != 0; }
-  void setInOpen(StateId s, std::size_t i) { *memberWord(s, i) |= memberBit(i); }
-  void clearInOpen(StateId s, std::size_t i) { *memberWord(s, i) &= ~memberBit(i); }
+  std::uint32_t& memberWord(StateId s, std::size_t i) { return rec(s)[member_word_ + (i + member_shift_) / 32]; }
+  std::uint32_t memberWord(StateId s, std::size_t i) const { return rec(s)[member_word_ + (i + member_shift_) / 32]; }
+  std::uint32_t memberBit(std::size_t i) const { return 1u << ((i + member_shift_) % 32); }
+  bool inOpen(StateId s, std::size_t i) const { return (memberWord(s, i) & memberBit(i)) != 0; }
+  void setInOpen(StateId s, std::size_t i) { memberWord(s, i) |= memberBit(i); }
+  void clearInOpen(StateId s, std::size_t i) { memberWord(s, i) &= ~memberBit(i); }
   void clearAllOpen(StateId s) {
     if (member_words_ == 0) {
       rec(s)[3] &= (1u << kFlagBits) - 1;
@@ -182,7 +177,8 @@ class MhaEngine : public SearchBase {
   std::size_t nh_ = 1;            // heuristics in use, anchor included
   bool bases_ = false;            // SearchProblem::hasInflationBases: b_i after the h_i
   std::size_t hw_ = 1;            // record words of heuristic values: nh_, 2 nh_ with bases
-  std::size_t member_words_ = 1;  // words of membership bits per record
+  std::size_t member_words_ = 1;  // words of membership bits per record (0: in the flags word)
+  std::size_t member_word_ = kHeaderWords + 1, member_shift_ = 0;  // where they are (memberWord)
   std::size_t stride_ = kHeaderWords + 2;
   double w1_ = 1.0, w2_ = 1.0;
   bool small_keys_ = false;  // the problem allows bucket queues
