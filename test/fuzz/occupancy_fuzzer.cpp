@@ -142,8 +142,14 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   const bool inadmissible = (pc.algorithm == Algorithm::kAmhaStar || pc.algorithm == Algorithm::kMhaStar) && c.num_inadmissible > 0;
   const bool backward = c.backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
+  // With the facade's kinematic table too: it changes the heuristics and the keys.
+  KinematicLookup kinematic;
+  if (g.kinematicTables()) {
+    kinematic = g.kinematicTables()->lookup(
+        backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, to.heading, nullptr);
+  }
   LatticeProblem problem(g, builder.compute(to.x, to.y, to.heading, inadmissible, 1, backward), from, to,
-                         inadmissible ? c.num_inadmissible : 0, backward);
+                         inadmissible ? c.num_inadmissible : 0, backward, false, kinematic);
   const test::ValidatorModel model = test::modelFor(g);
   std::vector<Cost> costs;
   Cost previous = kInfiniteCost;
