@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "amha_planner/lattice/heuristic_grids.h"
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/lattice_config.h"
 #include "amha_planner/lattice/motion_primitives.h"
 #include "dial_queue.h"
 #include "radix_heap.h"

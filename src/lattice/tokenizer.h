@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/map_types.h"
 
 namespace amha {
 namespace lattice {

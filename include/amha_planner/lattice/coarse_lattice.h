@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/lattice_config.h"
 
 namespace amha {
 namespace lattice {

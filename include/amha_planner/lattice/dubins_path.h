@@ -6,7 +6,7 @@
 #include <array>
 #include <vector>
 
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/map_types.h"
 
 namespace amha {
 namespace lattice {

@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/lattice_config.h"
 
 namespace amha {
 namespace lattice {

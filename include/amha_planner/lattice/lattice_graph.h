@@ -11,7 +11,7 @@
 
 #include "amha_planner/lattice/footprint.h"
 #include "amha_planner/lattice/kinematic_table.h"
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/lattice_config.h"
 #include "amha_planner/lattice/motion_primitives.h"
 
 namespace amha {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/lattice_config.h"
 
 namespace amha {
 namespace lattice {
