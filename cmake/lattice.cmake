@@ -15,6 +15,7 @@ add_library(amha_lattice
   src/lattice/primitive_generator.cpp
   src/lattice/footprint.cpp
   src/lattice/lattice_graph.cpp
+  src/lattice/grid_moves.cpp
   src/lattice/heuristic_grids.cpp
   src/lattice/coarse_lattice.cpp
   src/lattice/kinematic_table.cpp

@@ -1,6 +1,7 @@
 # The search core: algorithms only; depends on neither ROS nor OpenCV.
 add_library(amha_search
   src/search/planner_config.cpp
+  src/search/stop_condition.cpp
   src/search/large_blocks.cpp
   src/search/search_base.cpp
   src/search/dts_schedule.cpp
@@ -20,6 +21,7 @@ amha_add_gtest(amha_search_tests
     test/search/optimality_test.cpp
     test/search/weight_schedule_test.cpp
     test/search/limits_test.cpp
+    test/search/stop_condition_test.cpp
     test/search/monotone_cost_test.cpp
     test/search/dts_schedule_test.cpp
     test/search/ana_star_test.cpp

@@ -105,7 +105,7 @@ std::uint32_t CoarseLattice::edgeCost(std::size_t vb, const AbstractEdge& e) con
 }
 
 bool CoarseLattice::propagate(const std::vector<std::vector<AbstractEdge>>& edges, std::vector<std::uint32_t>& dist,
-                              detail::RadixHeap& heap, const GridStop* stop) const {
+                              detail::RadixHeap& heap, const StopCondition* stop) const {
   for (std::uint32_t pops = 0; !heap.empty();) {
     const auto [d, v] = heap.pop();
     if (d != dist[v]) continue;
@@ -130,7 +130,7 @@ std::pair<std::size_t, std::size_t> CoarseLattice::goalNodes(int gx, int gy, int
   return {index(gx, gy, gh), 1};
 }
 
-std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const GridStop* stop) const {
+std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const StopCondition* stop) const {
   std::vector<std::uint32_t> dist(static_cast<std::size_t>(pw_) * ph_ * headings_, kUnreachable);
   const auto [goal, count] = goalNodes(gx, gy, gh);
   if (block_cost_[goal / headings_] == 255) return dist;
@@ -147,7 +147,7 @@ std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool
 // found through the other direction's edge lists, which hold the same edges reversed.
 std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint32_t> old,
                                                           const std::vector<CellRect>& changed, int gx, int gy,
-                                                          int gh, bool forward, const GridStop* stop) const {
+                                                          int gh, bool forward, const StopCondition* stop) const {
   const std::size_t total = static_cast<std::size_t>(pw_) * ph_ * headings_;
   // Saturated distances break the equality test (every edge costs at least 1).
   if (old.size() != total || std::find(old.begin(), old.end(), kUnreachable - 1) != old.end()) {

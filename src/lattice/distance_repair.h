@@ -39,7 +39,7 @@ template <class ForNear, class Holds, class ForSuccessors, class ForPredecessors
 bool repairDistances(std::uint32_t* dist, std::uint32_t goal, std::uint32_t goal_count, bool goal_open,
                      ForNear&& forNear, Holds&& holds,
                      ForSuccessors&& forSuccessors, ForPredecessors&& forPredecessors, Propagate&& propagate,
-                     const GridStop* stop, RadixHeap& lower) {
+                     const StopCondition* stop, RadixHeap& lower) {
   std::vector<std::uint32_t> failed;
   {
     RadixHeap raise;

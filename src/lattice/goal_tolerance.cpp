@@ -67,7 +67,7 @@ bool CentreReachability::expand(Side& side, std::vector<std::uint64_t>& mine,
   return met;
 }
 
-CentreReachability::Answer CentreReachability::reaches(int x, int y, const GridStop* stop) {
+CentreReachability::Answer CentreReachability::reaches(int x, int y, const StopCondition* stop) {
   const std::int32_t target = y * map_.width + x;
   if (test(from_start_, target)) return Answer::kYes;
   if (test(unreachable_, target) || map_.cost[target] >= kInscribedCost) return Answer::kNo;
@@ -117,7 +117,7 @@ struct Candidate {
 }  // namespace
 
 GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, double tolerance, int start_x,
-                                int start_y, const GridStop* stop) {
+                                int start_y, const StopCondition* stop) {
   GoalChoice choice;
   int gx = 0, gy = 0, gh = 0;
   if (!(tolerance >= 0.0) || !graph.poseToState(goal, &gx, &gy, &gh)) return choice;

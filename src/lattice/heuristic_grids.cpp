@@ -17,77 +17,6 @@
 namespace amha {
 namespace lattice {
 
-std::vector<GridMove> gridMoves(int connectivity) {
-  std::vector<GridMove> moves;
-  auto add = [&](int dx, int dy) {
-    GridMove m;
-    m.dx = dx;
-    m.dy = dy;
-    m.length = std::hypot(dx, dy);
-    rasterizeSegment({0.5, 0.5}, {dx + 0.5, dy + 0.5}, m.required);
-    uniqueCells(m.required);
-    m.either_side = std::abs(dx) == 1 && std::abs(dy) == 1;
-    moves.push_back(std::move(m));
-  };
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      if (dx != 0 || dy != 0) add(dx, dy);
-    }
-  }
-  if (connectivity == 16) {
-    const int k[8][2] = {{2, 1}, {1, 2}, {-1, 2}, {-2, 1}, {-2, -1}, {-1, -2}, {1, -2}, {2, -1}};
-    for (const auto& d : k) add(d[0], d[1]);
-  }
-  return moves;
-}
-
-double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves) {
-  std::vector<CellOffset> cs = cells;
-  uniqueCells(cs);
-  auto index = [&](CellOffset c) {
-    const auto it = std::lower_bound(cs.begin(), cs.end(), c);
-    return it != cs.end() && *it == c ? static_cast<std::size_t>(it - cs.begin()) : cs.size();
-  };
-  const std::size_t m = cs.size();
-  const std::size_t src = index({0, 0}), dst = index(to);
-  if (src == m || dst == m) return std::numeric_limits<double>::infinity();
-  // Dijkstra with a heap: a long primitive has thousands of cells.
-  std::vector<double> d(m, std::numeric_limits<double>::infinity());
-  using Item = std::pair<double, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  d[src] = 0.0;
-  queue.push({0.0, src});
-  while (!queue.empty()) {
-    const Item top = queue.top();
-    queue.pop();
-    const std::size_t u = top.second;
-    if (top.first != d[u]) continue;
-    if (u == dst) return d[u];
-    for (const GridMove& mv : moves) {
-      // Ends present, and every other required cell (or, for either_side, at least one).
-      int sides = 0, sides_present = 0;
-      bool ok = true;
-      for (const CellOffset& r : mv.required) {
-        const bool end = (r.dx == 0 && r.dy == 0) || (r.dx == mv.dx && r.dy == mv.dy);
-        const bool present = index({cs[u].dx + r.dx, cs[u].dy + r.dy}) != m;
-        if (end || !mv.either_side) {
-          ok = ok && present;
-        } else {
-          ++sides;
-          sides_present += present;
-        }
-      }
-      if (!ok || (sides > 0 && sides_present == 0)) continue;
-      const std::size_t v = index({cs[u].dx + mv.dx, cs[u].dy + mv.dy});
-      if (v < m && d[u] + mv.length < d[v]) {
-        d[v] = d[u] + mv.length;
-        queue.push({d[v], v});
-      }
-    }
-  }
-  return std::numeric_limits<double>::infinity();
-}
-
 std::size_t GoalHeuristics::bytes() const {
   std::size_t b = sizeof(*this) + coarse.capacity() * sizeof(std::uint32_t);
   for (int k = 0; k < kNumGridKinds; ++k) {
@@ -229,7 +158,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
 
 
 template <class Queue>
-bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const {
+bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop) const {
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
   for (std::uint32_t pops = 0; !queue.empty();) {
@@ -262,7 +191,7 @@ constexpr std::size_t kPrefetchAhead = 4;
 
 template <bool kKnights, class Queue>
 bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                                            const GridStop* stop) const {
+                                            const StopCondition* stop) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -341,7 +270,7 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
   return true;
 }
 
-bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid, const GridStop* stop) const {
+bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid, const StopCondition* stop) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
   grid.width = width_;
@@ -373,7 +302,7 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
 }
 
 bool HeuristicGridBuilder::fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
-                               const std::vector<std::uint32_t>* source, const GridStop* stop) const {
+                               const std::vector<std::uint32_t>* source, const StopCondition* stop) const {
   // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
   // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
   grid.clear();
@@ -424,7 +353,7 @@ std::uint32_t HeuristicGridBuilder::moveCost(const Kind& kind, std::size_t i, st
 // dist[i] + moveCost(i, m).
 bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const DistanceGrid& old,
                                       const std::vector<CellRect>& changed, DistanceGrid& grid,
-                                      const GridStop* stop) const {
+                                      const StopCondition* stop) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
   // Saturated distances (kUnreachable - 1, old or new) break the equality test, and a step of 0
@@ -500,20 +429,20 @@ DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) con
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, int gh, bool inadmissible,
                                                                     unsigned threads, bool backward,
-                                                                    const GridStop* stop) const {
+                                                                    const StopCondition* stop) const {
   return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, nullptr, nullptr);
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(std::shared_ptr<const GoalHeuristics> old,
                                                                    const std::vector<CellRect>& changed,
                                                                    bool inadmissible, unsigned threads,
-                                                                   bool backward, const GridStop* stop) const {
+                                                                   bool backward, const StopCondition* stop) const {
   const int gx = old->goal_x, gy = old->goal_y, gh = old->goal_heading;
   return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, std::move(old), &changed);
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
-    int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward, const GridStop* stop,
+    int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward, const StopCondition* stop,
     std::shared_ptr<const GoalHeuristics> old, const std::vector<CellRect>* changed) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<GoalHeuristics>();

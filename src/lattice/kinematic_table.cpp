@@ -145,7 +145,7 @@ std::shared_ptr<KinematicTables> KinematicTables::shared(const std::vector<Kinem
 }
 
 std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction direction, int heading,
-                                                                  const GridStop* stop) const {
+                                                                  const StopCondition* stop) const {
   auto slice = std::make_shared<KinematicSlice>(radius_, headings_);
   const int R = radius_, nh = headings_;
   const std::size_t cells = slice->cells();
@@ -229,7 +229,7 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   return slice;
 }
 
-KinematicLookup KinematicTables::lookup(Direction direction, int heading, const GridStop* stop,
+KinematicLookup KinematicTables::lookup(Direction direction, int heading, const StopCondition* stop,
                                         double* seconds) const {
   const auto t_call = std::chrono::steady_clock::now();
   bool was_ready = false;
@@ -303,7 +303,7 @@ KinematicLookup KinematicTables::lookup(Direction direction, int heading, const 
   return out;
 }
 
-bool KinematicTables::prepare(Direction direction, const GridStop* stop, unsigned threads) const {
+bool KinematicTables::prepare(Direction direction, const StopCondition* stop, unsigned threads) const {
   std::vector<int> keys;  // one heading per orbit
   for (int h = 0; h < headings_; ++h) {
     bool canonical = true;

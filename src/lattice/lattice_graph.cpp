@@ -8,7 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/grid_moves.h"
 
 namespace amha {
 namespace lattice {
@@ -74,9 +74,9 @@ constexpr std::size_t kBytesPerSweptCell = sizeof(std::int64_t) + sizeof(CellOff
 
 }  // namespace
 
-void throwIfStopped(const GridStop* stop, const char* during) {
+void throwIfStopped(const StopCondition* stop, const char* during) {
   if (stop == nullptr || !stop->requested()) return;
-  const bool cancelled = stop->cancel != nullptr && stop->cancel->load();
+  const bool cancelled = stop->cancelled();
   throw SetupStopped(cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit,
                      std::string(cancelled ? "cancelled" : "time budget used up") + " while building the planner (" +
                          during + ")");
@@ -195,7 +195,7 @@ void LatticeGraph::linkActionsInto() {
   for (const LatticeAction& a : actions_) actions_into_[a.end_heading].push_back(&a);
 }
 
-void LatticeGraph::buildActions(const GridStop* stop) {
+void LatticeGraph::buildActions(const StopCondition* stop) {
   const double res = map_->resolution;
   const int n = primitives_.num_headings;
   const double omega = config_.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.time_to_turn_45 : 0.0;

@@ -85,7 +85,7 @@ struct LatticePlanner::Impl {
   /// computation stopped that way is not cached, and threads that were waiting for it compute
   /// the grids themselves. `seconds` receives the time spent here computing or waiting for them.
   std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
-                                                     bool backward, const GridStop& stop, double* seconds,
+                                                     bool backward, const StopCondition& stop, double* seconds,
                                                      HeuristicSource* source) {
     const GoalKey key{x, y, heading, inadmissible, backward};
     const auto t0 = std::chrono::steady_clock::now();
@@ -196,16 +196,8 @@ struct LatticePlanner::Impl {
 
 namespace {
 
-/// The cancel flag and the deadline (limits' time budget from `start`) of `limits`.
-GridStop stopFor(const SearchLimits& limits, std::chrono::steady_clock::time_point start) {
-  GridStop stop;
-  stop.cancel = limits.cancel;
-  if (limits.time_limit_s < 1e9) {
-    stop.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                std::chrono::duration<double>(std::max(0.0, limits.time_limit_s)));
-  }
-  return stop;
-}
+/// The cancel flag and the time budget of `limits`, from now.
+StopCondition stopFor(const SearchLimits& limits) { return StopCondition(limits.cancel, limits.time_limit_s); }
 
 /// Which kinematic tables a search uses: to the goal, or searching backward from the start.
 KinematicTables::Direction tableDirection(bool backward) {
@@ -220,7 +212,7 @@ LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const Lattice
 LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config,
                                const SearchLimits& limits)
     : impl_(new Impl) {
-  const GridStop stop = stopFor(limits, std::chrono::steady_clock::now());
+  const StopCondition stop = stopFor(limits);
   impl_->map = map;
   impl_->graph.reset(new LatticeGraph(std::move(map), config, GraphLimits{&stop, limits.max_memory_bytes}));
   throwIfStopped(&stop, "heuristic tables");
@@ -295,8 +287,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const P
 namespace {
 
 /// Why `stop` stopped something: its cancel flag, else the deadline.
-SearchStatus stoppedStatus(const GridStop& stop) {
-  return stop.cancel != nullptr && stop.cancel->load() ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
+SearchStatus stoppedStatus(const StopCondition& stop) {
+  return stop.cancelled() ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
 }
 
 /// The state plan() searches to, as `options` ask: the goal pose's state; with any heading, a
@@ -304,7 +296,7 @@ SearchStatus stoppedStatus(const GridStop& stop) {
 /// collision. `result` holds checkQuery's verdict on entry; false if it is final (a query
 /// error, or `stop` came first: then result.search.status says which).
 bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal, const GoalOptions& options,
-                const GridStop& stop, std::chrono::steady_clock::time_point since, PlanResult& result,
+                const StopCondition& stop, std::chrono::steady_clock::time_point since, PlanResult& result,
                 LatticeState* t) {
   g.poseToState(goal, &t->x, &t->y, &t->heading);
   if (result.error == QueryError::kGoalInCollision && options.any_heading) {
@@ -354,7 +346,7 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
 /// The escapes from start state `s`, in collision (`collision` says how), as StartOptions
 /// allow. False if that is final: no escape (result.error kStartInCollision), or `stop` came first
 /// (result.search.status says which).
-bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions& options, const GridStop& stop,
+bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions& options, const StopCondition& stop,
                 const std::string& collision, PlanResult& result, std::unique_ptr<StartEscape>* escape) {
   if (g.config().backward_search) {
     result.error = QueryError::kStartInCollision;
@@ -430,6 +422,9 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   }
   const bool any_heading = goal_options.any_heading;
   const auto call_start = std::chrono::steady_clock::now();
+  // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
+  // a big map).
+  const StopCondition stop = stopFor(limits);
   const LatticeGraph& g = *impl_->graph;
   PlanResult result;
   result.error = checkQuery(start, goal, &result.message);
@@ -443,9 +438,6 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   // the map (and the start valid, or to be left), which poseToState needs.
   if (result.error != QueryError::kNone && result.error != QueryError::kGoalInCollision) return result;
   std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
-  // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
-  // a big map).
-  const GridStop stop = stopFor(limits, call_start);
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   std::unique_ptr<StartEscape> escape;
@@ -531,7 +523,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
 bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) const {
   const auto& tables = impl_->graph->kinematicTables();
   if (!tables) return true;
-  const GridStop stop = stopFor(limits, std::chrono::steady_clock::now());
+  const StopCondition stop = stopFor(limits);
   return tables->prepare(tableDirection(impl_->graph->config().backward_search), &stop);
 }
 
@@ -544,7 +536,7 @@ bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& g
   int x = 0, y = 0, heading = 0;
   if (!g.poseToState(backward ? start : goal, &x, &y, &heading)) return true;  // plan() will refuse it
   if (goal_options.any_heading && !backward) heading = kAnyHeading;
-  const GridStop stop = stopFor(limits, std::chrono::steady_clock::now());
+  const StopCondition stop = stopFor(limits);
   return tables->lookup(tableDirection(backward), heading, &stop).valid();
 }
 

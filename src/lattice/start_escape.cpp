@@ -12,7 +12,7 @@ namespace amha {
 namespace lattice {
 
 StartEscape::StartEscape(const LatticeGraph& graph, const LatticeState& start, double tolerance, double penalty,
-                         const GridStop* stop)
+                         const StopCondition* stop)
     : graph_(graph), penalty_(penalty) {
   const GridMap& map = graph.map();
   // The obstacle cells the robot stands on: under its footprint (its centre cell included).

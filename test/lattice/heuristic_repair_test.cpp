@@ -3,6 +3,7 @@
 // opened passages, cost changes, the goal itself blocked and freed again. Checked along chains
 // of random updates, repairing grids that are one update old and grids several updates old
 // (the changes of all the updates since then passed together).
+#include <limits>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -197,8 +198,7 @@ TEST(HeuristicRepair, NoChangeGivesTheSameGridsAndAStopIsHonoured) {
   ASSERT_TRUE(same);
   expectSame(*same, *grids, map->width, "no change");
   std::atomic<bool> cancel{true};
-  GridStop stop;
-  stop.cancel = &cancel;
+  const StopCondition stop(&cancel, std::numeric_limits<double>::infinity());
   EXPECT_EQ(builder.repair(grids, {CellRect{0, 0, 90, 70}}, true, 1, false, &stop), nullptr);
 }
 

@@ -4,6 +4,7 @@
 // of real and generated maps, the edges across the disc's edge included, and admissible
 // against the exact cost-to-go; the naive construction (T inside, Euclidean outside) is shown
 // to break there; a table raised by one unit is caught; tables are shared and cancellable.
+#include <limits>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -384,8 +385,7 @@ TEST(KinematicTable, ABuildIsCancellableAndRetried) {
   map->cost.assign(64, kFreeCost);
   const LatticeGraph g(map, c);
   std::atomic<bool> cancel{true};
-  GridStop stop;
-  stop.cancel = &cancel;
+  const StopCondition stop(&cancel, std::numeric_limits<double>::infinity());
   EXPECT_FALSE(g.kinematicTables()->lookup(Direction::kToGoal, 1, &stop).valid());
   EXPECT_EQ(g.kinematicTables()->slicesBuilt(), 0);
   EXPECT_TRUE(g.kinematicTables()->lookup(Direction::kToGoal, 1).valid());

@@ -115,7 +115,7 @@ TEST(StartEscape, SolutionsAgainstAnExhaustiveDijkstraOfTheRelaxedProblem) {
     for (int q = 0, tries = 0; q < 3 && tries < 2000; ++tries) {
       const LatticeState s = randomState(g, rng), t = randomState(g, rng);
       if (g.stateValid(s.x, s.y, s.heading) || !g.stateValid(t.x, t.y, t.heading)) continue;
-      GridStop no_stop;
+      StopCondition no_stop;
       const StartEscape escape(g, s, kTolerance, kPenalty, &no_stop);
       if (escape.outcome() != StartEscape::Outcome::kFound) continue;
       ++q;

@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "amha_planner/lattice/lattice_config.h"
+#include "amha_planner/search/stop_condition.h"
 
 namespace amha {
 namespace lattice {
 
 class LatticeGraph;
-struct GridStop;
 namespace detail {
 class RadixHeap;
 }
@@ -38,14 +38,14 @@ class CoarseLattice {
   /// heading kAnyHeading: to (or from) the nearest of the block's states, whatever their
   /// heading. Empty if `stop` asked to stop first.
   std::vector<std::uint32_t> distances(int x, int y, int heading, bool forward = false,
-                                       const GridStop* stop = nullptr) const;
+                                       const StopCondition* stop = nullptr) const;
   /// The same distances, repaired from `old`: distances() of an abstraction whose map differed
   /// from this one's only inside the rectangles `changed` (as HeuristicGridBuilder::repair does
   /// for the grids: only the states near the change, and those whose shortest path crossed
   /// it, are visited). Empty if `stop` asked to stop first.
   std::vector<std::uint32_t> repairDistances(std::vector<std::uint32_t> old, const std::vector<CellRect>& changed,
                                              int x, int y, int heading, bool forward = false,
-                                             const GridStop* stop = nullptr) const;
+                                             const StopCondition* stop = nullptr) const;
   /// Index of the abstract state of lattice state (x, y, heading) in distancesTo's result.
   std::size_t index(int x, int y, int heading) const {
     return (static_cast<std::size_t>(y / k_ + pad_) * pw_ + (x / k_ + pad_)) * headings_ + heading;
@@ -66,7 +66,7 @@ class CoarseLattice {
   std::uint32_t edgeCost(std::size_t vb, const AbstractEdge& e) const;
   /// Dijkstra from the nodes already in `heap` (their distances in dist); false if stopped.
   bool propagate(const std::vector<std::vector<AbstractEdge>>& edges, std::vector<std::uint32_t>& dist,
-                 detail::RadixHeap& heap, const GridStop* stop) const;
+                 detail::RadixHeap& heap, const StopCondition* stop) const;
 
   const LatticeGraph& graph_;
   int k_ = 1, headings_ = 1, pad_ = 0, pw_ = 0, ph_ = 0;

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "amha_planner/lattice/lattice_config.h"
+#include "amha_planner/search/stop_condition.h"
 
 namespace amha {
 namespace lattice {
 
 class LatticeGraph;
-struct GridStop;
 
 /// The cells the robot's centre may reach from a start cell: the start's 8-connected component
 /// of cells below kInscribedCost. Every valid state and every motion's centre line lies on such
@@ -34,7 +34,7 @@ class CentreReachability {
   /// (start_x, start_y) must be a cell of `map`.
   CentreReachability(const GridMap& map, int start_x, int start_y);
   /// Whether (x, y) is in the start's component; kStopped if `stop` (may be null) asked first.
-  Answer reaches(int x, int y, const GridStop* stop);
+  Answer reaches(int x, int y, const StopCondition* stop);
 
  private:
   /// A greedy search over the component: a frontier ordered by squared distance to a target.
@@ -82,7 +82,7 @@ struct GoalChoice {
 /// the work grows with the distance to the answer, not with the tolerance. `goal` must be a
 /// finite pose inside the map and tolerance >= 0 (infinity: anywhere on the map).
 GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, double tolerance, int start_x,
-                                int start_y, const GridStop* stop);
+                                int start_y, const StopCondition* stop);
 
 }  // namespace lattice
 }  // namespace amha

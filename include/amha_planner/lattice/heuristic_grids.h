@@ -16,33 +16,14 @@
 
 #include "amha_planner/lattice/coarse_lattice.h"
 #include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/grid_moves.h"
+#include "amha_planner/search/stop_condition.h"
 #include "amha_planner/search/types.h"
 
 namespace amha {
 namespace lattice {
 
 class LatticeGraph;
-
-/// A grid move: from a cell to (dx, dy), allowed only if every required cell (the cells the
-/// straight segment between the two centres meets, both ends included) is passable; its cost
-/// uses the worst of those cells. Exception, `either_side`: a diagonal step's segment touches
-/// its two side cells only at their shared corner, so it needs its two ends and *one* passable
-/// side cell, and its cost uses the cheaper passable side. (Demanding both sides cost the
-/// anchor a quarter of its scale on pr2.mprim, whose 22.5-degree primitives pass exactly
-/// through cell corners.)
-struct GridMove {
-  int dx = 0, dy = 0;
-  double length = 0.0;  ///< cells
-  std::vector<CellOffset> required;
-  bool either_side = false;  ///< required = the two ends + the two side cells, one of which suffices
-};
-
-/// The 8 neighbours (connectivity 8) or the 8 neighbours and the 8 knight moves (16).
-std::vector<GridMove> gridMoves(int connectivity);
-
-/// Shortest walk (in cells of length) from (0, 0) to `to` using `moves` whose required cells
-/// all lie in `cells`; infinity if there is none.
-double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves);
 
 /// Unreachable cells of a grid hold this.
 constexpr std::uint32_t kUnreachable = 0xFFFFFFFFu;
@@ -77,18 +58,6 @@ struct GoalHeuristics {
   std::size_t bytes() const;
 };
 
-/// Stops a grid computation early: LatticePlanner::plan passes the search's cancel flag and
-/// deadline, so that a cancel or the time budget is honoured while a big map's grids are
-/// computed (seconds on 4000 x 4000 cells). Checked every few thousand cells.
-struct GridStop {
-  const std::atomic<bool>* cancel = nullptr;
-  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
-  bool requested() const {
-    return (cancel != nullptr && cancel->load(std::memory_order_relaxed)) ||
-           (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline);
-  }
-};
-
 /// Per-map data the grids need (levels with blocked cells, step-cost tables), built once.
 class HeuristicGridBuilder {
  public:
@@ -102,7 +71,7 @@ class HeuristicGridBuilder {
   /// Returns null if `stop` asked to stop before the tables were complete.
   std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading, bool inadmissible = true,
                                                 unsigned threads = 0, bool backward = false,
-                                                const GridStop* stop = nullptr) const;
+                                                const StopCondition* stop = nullptr) const;
   /// The grids of old's goal (old->goal_x, goal_y, goal_heading) for this builder's map,
   /// repaired from `old`: grids computed for a version of this map whose cells differed from
   /// this one's only inside the rectangles `changed` (with the same configuration). Equal to
@@ -116,7 +85,7 @@ class HeuristicGridBuilder {
   std::shared_ptr<const GoalHeuristics> repair(std::shared_ptr<const GoalHeuristics> old,
                                                const std::vector<CellRect>& changed, bool inadmissible = true,
                                                unsigned threads = 0, bool backward = false,
-                                               const GridStop* stop = nullptr) const;
+                                               const StopCondition* stop = nullptr) const;
   /// One grid alone (for tests and timing).
   DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
   bool needed(GridKind kind) const { return needed_[static_cast<int>(kind)]; }
@@ -141,26 +110,26 @@ class HeuristicGridBuilder {
                  std::uint8_t max_cost_class, const HeuristicGridBuilder* previous);
   /// compute() and repair(): repairs from `old` where it can (old and changed non-null).
   std::shared_ptr<const GoalHeuristics> computeOrRepair(int goal_x, int goal_y, int goal_heading, bool inadmissible,
-                                                        unsigned threads, bool backward, const GridStop* stop,
+                                                        unsigned threads, bool backward, const StopCondition* stop,
                                                         std::shared_ptr<const GoalHeuristics> old,
                                                         const std::vector<CellRect>* changed) const;
   // These return false when `stop` asked to stop (the grid is then incomplete).
-  bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid, const GridStop* stop = nullptr) const;
+  bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid, const StopCondition* stop = nullptr) const;
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
-                  const std::vector<CellRect>& changed, DistanceGrid& grid, const GridStop* stop) const;  // grid may be old
+                  const std::vector<CellRect>& changed, DistanceGrid& grid, const StopCondition* stop) const;  // grid may be old
   /// Fills `grid` with `count` copies of `value`, or with `source`, in slices that check `stop`.
   bool fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
-            const std::vector<std::uint32_t>* source, const GridStop* stop) const;
+            const std::vector<std::uint32_t>* source, const StopCondition* stop) const;
   /// Whether a distance on this map could reach the saturation value kUnreachable - 1.
   bool canSaturate(const Kind& kind) const;
   /// The cost of move m from padded cell i (dijkstra()'s relaxation), kUnreachable if blocked.
   std::uint32_t moveCost(const Kind& kind, std::size_t i, std::size_t m) const;
   // Dijkstra from the cells already in `queue` (with their distances in dist).
   template <class Queue>
-  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
+  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop) const;
   /// The 8-connected (kKnights false) and 16-connected moves, unrolled.
   template <bool kKnights, class Queue>
-  bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue, const GridStop* stop) const;
+  bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;

@@ -31,7 +31,7 @@
 //
 // Tables are built on first use (a Dijkstra over about pi R^2 x headings states), shared by
 // every query and every planner with the same actions (KinematicTables::shared), and a build
-// honours a GridStop.
+// honours a StopCondition.
 #pragma once
 
 #include <array>
@@ -41,11 +41,11 @@
 #include <vector>
 
 #include "amha_planner/search/types.h"
+#include "amha_planner/search/stop_condition.h"
 
 namespace amha {
 namespace lattice {
 
-struct GridStop;
 struct KinematicTableTestAccess;  // the tests' mutations
 
 /// What the table needs of an action: its displacement, headings and cost on a free cell.
@@ -130,13 +130,13 @@ class KinematicTables {
   /// asked to stop first (nothing is kept then; a later call builds it). Thread-safe: callers
   /// asking for a slice being built wait for that build (or their own stop).
   /// `seconds`, if given, receives the time spent building or waiting (0 when it was ready).
-  KinematicLookup lookup(Direction direction, int heading, const GridStop* stop = nullptr,
+  KinematicLookup lookup(Direction direction, int heading, const StopCondition* stop = nullptr,
                          double* seconds = nullptr) const;
 
   /// Builds every slice lookup() can ask for in `direction` (one per orbit of headings), in
   /// parallel threads (0: all hardware threads), so that no query waits for one. False if
   /// `stop` asked to stop first (the slices finished so far are kept).
-  bool prepare(Direction direction, const GridStop* stop = nullptr, unsigned threads = 0) const;
+  bool prepare(Direction direction, const StopCondition* stop = nullptr, unsigned threads = 0) const;
 
   int radius() const { return radius_; }
   int numHeadings() const { return headings_; }
@@ -150,7 +150,7 @@ class KinematicTables {
   int slicesBuilt() const;
 
   /// Builds one slice outright (for tests): K for direction and canonical heading `heading`.
-  std::shared_ptr<const KinematicSlice> buildSlice(Direction direction, int heading, const GridStop* stop) const;
+  std::shared_ptr<const KinematicSlice> buildSlice(Direction direction, int heading, const StopCondition* stop) const;
 
  private:
   struct Symmetry {

@@ -13,6 +13,7 @@
 #include "amha_planner/lattice/kinematic_table.h"
 #include "amha_planner/lattice/lattice_config.h"
 #include "amha_planner/lattice/motion_primitives.h"
+#include "amha_planner/search/stop_condition.h"
 
 namespace amha {
 namespace lattice {
@@ -38,19 +39,18 @@ struct LatticeAction {
 
 constexpr Cost kInvalidEdge = -1;
 
-struct GridStop;
 
 /// What may stop a graph's construction (LatticePlanner's constructor with limits).
 struct GraphLimits {
   /// Its cancel flag and deadline stop the work between steps (SetupStopped); null: never.
-  const GridStop* stop = nullptr;
+  const StopCondition* stop = nullptr;
   /// Refuses (SetupStopped, kMemoryLimit) a graph whose per-map data are estimated above this.
   std::size_t max_bytes = std::numeric_limits<std::size_t>::max();
 };
 
 /// Throws SetupStopped (kCancelled or kTimeLimit) if `stop` (may be null) asks to stop;
 /// `during` names the step for the message.
-void throwIfStopped(const GridStop* stop, const char* during);
+void throwIfStopped(const StopCondition* stop, const char* during);
 
 /// The radii that bound the clearance classes, for actions with these sweep radii: the distinct
 /// ones, ascending; more than 255 are rounded up onto 255 levels (a larger radius only sends the
@@ -169,7 +169,7 @@ class LatticeGraph {
   /// Refuses robots that fit nowhere on the map or whose sweeps would be too large, and
   /// estimates the per-map bytes against `limits` (before any sweep is computed).
   void checkRobotSize(const GraphLimits& limits) const;
-  void buildActions(const GridStop* stop);
+  void buildActions(const StopCondition* stop);
   void linkActionsInto();
   /// The radii (cells) of the two openings.
   std::array<double, 2> openingRadii() const;
