@@ -10,7 +10,6 @@
 #include <sstream>
 #include <thread>
 
-#include <pthread.h>
 #include <time.h>
 
 #include <CLI/CLI.hpp>
@@ -264,36 +263,10 @@ int runTiles(int argc, char** argv) {
                   << fmtBound(s.certified_bound) << ")  at "
                   << fmtSeconds(cpu_clock ? run.solution_cpu_s.back() : s.elapsed_s) << " s\n";
       };
-      // On the CPU clock a watchdog cancels the search when this thread has used its time;
-      // the wall-clock limit stays as a safety net for a starved process.
-      std::atomic<bool> cancel{false}, done{false};
-      std::thread watchdog;
-      if (cpu_clock) {
-        limits.cancel = &cancel;
-        limits.time_limit_s = 20 * o.time_limit + 60;
-        clockid_t cid;
-        pthread_getcpuclockid(pthread_self(), &cid);
-        watchdog = std::thread([&, cid] {
-          while (!done) {
-            timespec ts{};
-            clock_gettime(cid, &ts);
-            if (static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec) - cpu0 >=
-                o.time_limit) {
-              cancel = true;
-              return;
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-          }
-        });
-      }
+      // On the CPU clock the search measures its budget on this thread's CPU time.
+      if (cpu_clock) limits.clock = StopClock::kThreadCpu;
       run.result = planner->search(*problem, limits, cb);
       run.cpu_s = threadCpuSeconds() - cpu0;
-      done = true;
-      if (watchdog.joinable()) watchdog.join();
-      // The cancel flag is ours and only the CPU-time budget sets it.
-      if (cpu_clock && run.result.status == SearchStatus::kCancelled) {
-        run.result.status = SearchStatus::kTimeLimit;
-      }
       for (Solution& s : run.result.solutions) {
         const std::string err = verify(*problem, inst.start, s);
         if (!err.empty()) {

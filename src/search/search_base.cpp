@@ -9,6 +9,7 @@ namespace detail {
 void SearchBase::begin(SearchProblem& problem, const SearchLimits& limits,
                        const SolutionCallback* cb) {
   t0_ = Clock::now();
+  stop_condition_ = StopCondition(limits.cancel, limits.time_limit_s, limits.clock);
   problem_ = &problem;
   limits_ = limits;
   callback_ = cb;
@@ -47,10 +48,11 @@ std::size_t SearchBase::memoryBytes() const {
 }
 
 bool SearchBase::slowLimitCheck() {
-  if (limits_.cancel != nullptr && limits_.cancel->load(std::memory_order_relaxed)) {
-    return stopWith(SearchStatus::kCancelled);
-  }
-  if (elapsed() >= limits_.time_limit_s) return stopWith(SearchStatus::kTimeLimit);
+  if (stop_condition_.cancelled()) return stopWith(SearchStatus::kCancelled);
+  // A thread's CPU clock is a system call (~0.3 us, 3 % of the tiles' expansions if read
+  // every 64): read it every 1024 expansions; the wall clock is cheap.
+  const bool read_clock = limits_.clock == StopClock::kWall || (expansions_ & 1023u) == 0;
+  if (read_clock && stop_condition_.reason() == StopReason::kDeadline) return stopWith(SearchStatus::kTimeLimit);
   if ((expansions_ & 4095u) == 0 && memoryBytes() > limits_.max_memory_bytes) {
     return stopWith(SearchStatus::kMemoryLimit);
   }

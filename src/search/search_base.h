@@ -93,6 +93,7 @@ class SearchBase {
 
   SearchProblem* problem_ = nullptr;
   SearchLimits limits_;
+  StopCondition stop_condition_;  // limits_' cancel flag and time budget, from begin()
   const SolutionCallback* callback_ = nullptr;
   Clock::time_point t0_;
   SearchResult result_;

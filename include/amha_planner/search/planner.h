@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "amha_planner/search/problem.h"
+#include "amha_planner/search/stop_condition.h"
 #include "amha_planner/search/types.h"
 
 namespace amha {
@@ -60,7 +61,7 @@ enum class SearchStatus {
 };
 const char* statusName(SearchStatus s);
 
-/// Limits every search honours. The time budget is measured on std::chrono::steady_clock and,
+/// Limits every search honours. The time budget is measured on `clock` (the wall by default) and,
 /// with the cancel flag, checked often enough to be honoured within a few milliseconds.
 struct SearchLimits {
   double time_limit_s = std::numeric_limits<double>::infinity();
@@ -68,6 +69,9 @@ struct SearchLimits {
   std::size_t max_states = std::numeric_limits<std::size_t>::max();
   std::size_t max_memory_bytes = std::numeric_limits<std::size_t>::max();
   const std::atomic<bool>* cancel = nullptr;  ///< set to true from any thread to stop
+  /// The clock of time_limit_s: the wall, or the CPU time of the thread that runs the search
+  /// (fair timings on a shared machine; the search's reported times stay on the wall clock).
+  StopClock clock = StopClock::kWall;
 };
 
 /// The largest weight (w1, w2, epsilon) and weight decrement a planner accepts. Heuristic values
