@@ -116,13 +116,13 @@ int benchPrimitivesMain(int argc, char** argv) {
       s.name = t.substr(0, eq);
       s.spec = t.substr(eq + 1);
       s.config = loaded.config;
-      s.config.mprim_file.clear();
+      s.config.motion.mprim_file.clear();
       if (s.spec == "near-minimal") {
-        s.config.primitive_generator = lattice::PrimitiveGenerator::kNearMinimal;
+        s.config.motion.generator = lattice::PrimitiveGenerator::kNearMinimal;
       } else if (s.spec == "legacy") {
-        s.config.primitive_generator = lattice::PrimitiveGenerator::kLegacy;
+        s.config.motion.generator = lattice::PrimitiveGenerator::kLegacy;
       } else {
-        s.config.mprim_file = s.spec;
+        s.config.motion.mprim_file = s.spec;
       }
       s.planner.reset(new lattice::LatticePlanner(loaded.map, s.config));
       const lattice::PrimitiveSet& p = s.planner->graph().primitives();  // the set the planner uses

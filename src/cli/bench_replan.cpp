@@ -128,7 +128,7 @@ int benchReplanMain(int argc, char** argv) {
     goal = parsePose(goal_text, "--goal");
     for (int k = 0; k < 2; ++k) {
       lattice::LatticeConfig c = loaded.config;
-      c.repair_heuristics = k == 0;
+      c.cache.repair = k == 0;
       planners[k].reset(new LatticePlanner(loaded.map, c));
     }
   } catch (const lattice::LatticeError& e) {

@@ -167,30 +167,30 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   out.is_sbpl_env = endsWith(o.map_file, ".cfg");
 
   lattice::LatticeConfig& c = out.config;
-  if (o.mprim) c.mprim_file = *o.mprim;
-  if (o.turning_radius) c.turning_radius = *o.turning_radius;
-  if (o.headings) c.num_headings = *o.headings;
-  c.allow_reverse = o.reverse;
-  c.turn_in_place = !o.no_turn_in_place;
+  if (o.mprim) c.motion.mprim_file = *o.mprim;
+  if (o.turning_radius) c.motion.turning_radius = *o.turning_radius;
+  if (o.headings) c.motion.num_headings = *o.headings;
+  c.motion.allow_reverse = o.reverse;
+  c.motion.turn_in_place = !o.no_turn_in_place;
   o.primitive.applyTo(c);
-  if (o.footprint) c.footprint = parseFootprint(*o.footprint);
-  if (o.radius) c.robot_radius = *o.radius;
+  if (o.footprint) c.robot.footprint = parseFootprint(*o.footprint);
+  if (o.radius) c.robot.radius = *o.radius;
   if (out.is_sbpl_env) lattice::useSbplCostModel(out.env, c);
-  if (o.cost_penalty) c.cost_penalty = *o.cost_penalty;
-  if (o.nominal_speed) c.nominal_speed = *o.nominal_speed;
-  if (o.turn_time_45) c.time_to_turn_45 = *o.turn_time_45;
-  if (o.inadmissible) c.num_inadmissible = *o.inadmissible;
-  c.grid_anchor = o.anchor != "euclidean";
-  c.coarse_anchor = o.anchor == "coarse";
-  if (o.coarse_block) c.coarse_block = *o.coarse_block;
-  if (o.kinematic_radius) c.kinematic_radius = *o.kinematic_radius;
-  if (o.anchor_connectivity) c.anchor_connectivity = *o.anchor_connectivity;
+  if (o.cost_penalty) c.cost.penalty = *o.cost_penalty;
+  if (o.nominal_speed) c.cost.nominal_speed = *o.nominal_speed;
+  if (o.turn_time_45) c.cost.time_to_turn_45 = *o.turn_time_45;
+  if (o.inadmissible) c.heuristics.num_inadmissible = *o.inadmissible;
+  c.heuristics.grid_anchor = o.anchor != "euclidean";
+  c.heuristics.coarse_anchor = o.anchor == "coarse";
+  if (o.coarse_block) c.heuristics.coarse_block = *o.coarse_block;
+  if (o.kinematic_radius) c.heuristics.kinematic_radius = *o.kinematic_radius;
+  if (o.anchor_connectivity) c.heuristics.anchor_connectivity = *o.anchor_connectivity;
   if (o.inadmissible_kind) {
-    c.inadmissible = *o.inadmissible_kind == "paper" ? lattice::LatticeConfig::Inadmissible::kPaper
+    c.heuristics.inadmissible = *o.inadmissible_kind == "paper" ? lattice::LatticeConfig::Inadmissible::kPaper
                                                      : lattice::LatticeConfig::Inadmissible::kKinematic;
   }
-  c.anchor_turn_term = o.turn_term;  // --no-turn-term is the default (the two exclude each other)
-  c.inflate_heading_terms = o.inflate_heading_terms;
+  c.heuristics.anchor_turn_term = o.turn_term;  // --no-turn-term is the default (the two exclude each other)
+  c.heuristics.inflate_heading_terms = o.inflate_heading_terms;
   c.backward_search = o.backward;
   return out;
 }

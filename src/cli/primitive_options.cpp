@@ -20,32 +20,32 @@ void PrimitiveOptions::addTo(CLI::App& app) {
 }
 
 void PrimitiveOptions::applyTo(lattice::LatticeConfig& c) const {
-  const bool file = !c.mprim_file.empty();
+  const bool file = !c.motion.mprim_file.empty();
   if (file && (generator || motion_model)) {
     throw std::invalid_argument("--mprim cannot be combined with --primitive-generator or --motion-model");
   }
-  if (file && !lattice::isNav2LatticePath(c.mprim_file) && (c.allow_reverse || reverse_penalty)) {
+  if (file && !lattice::isNav2LatticePath(c.motion.mprim_file) && (c.motion.allow_reverse || reverse_penalty)) {
     throw std::invalid_argument("--reverse and --reverse-penalty apply to generated primitives and Nav2 files (.json), "
                                 "not to a .mprim file (its backward motions are in the file)");
   }
   if (generator) {
     if (*generator == "near-minimal") {
-      c.primitive_generator = lattice::PrimitiveGenerator::kNearMinimal;
+      c.motion.generator = lattice::PrimitiveGenerator::kNearMinimal;
     } else if (*generator == "legacy") {
-      c.primitive_generator = lattice::PrimitiveGenerator::kLegacy;
+      c.motion.generator = lattice::PrimitiveGenerator::kLegacy;
     } else {
       throw std::invalid_argument("--primitive-generator must be near-minimal or legacy, not '" + *generator + "'");
     }
   }
-  if (motion_model && !lattice::parseMotionModel(*motion_model, &c.motion_model)) {
+  if (motion_model && !lattice::parseMotionModel(*motion_model, &c.motion.model)) {
     throw std::invalid_argument("--motion-model must be diff, ackermann or omni, not '" + *motion_model + "'");
   }
   if (reverse_penalty) {
     if (!(*reverse_penalty > 0.0) || !std::isfinite(*reverse_penalty)) {
       throw std::invalid_argument("--reverse-penalty must be a finite number > 0, not " + std::to_string(*reverse_penalty));
     }
-    if (!c.allow_reverse) throw std::invalid_argument("--reverse-penalty needs --reverse");
-    c.reverse_multiplier = *reverse_penalty;
+    if (!c.motion.allow_reverse) throw std::invalid_argument("--reverse-penalty needs --reverse");
+    c.cost.reverse_multiplier = *reverse_penalty;
   }
 }
 

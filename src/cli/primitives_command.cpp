@@ -73,8 +73,8 @@ int primitivesMain(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     lattice::LatticeConfig c;
-    c.mprim_file = in;
-    c.allow_reverse = lo.reverse;
+    c.motion.mprim_file = in;
+    c.motion.allow_reverse = lo.reverse;
     lo.primitive.applyTo(c);
     if (!in.empty()) {
       if (app.count("--resolution") || app.count("--headings") || app.count("--turning-radius") ||
@@ -86,9 +86,9 @@ int primitivesMain(int argc, char** argv) {
       o.num_headings = lo.headings.value_or(o.num_headings);
       o.allow_reverse = lo.reverse;
       o.turn_in_place = !lo.no_turn_in_place;
-      o.generator = c.primitive_generator;
-      o.motion_model = c.motion_model;
-      o.reverse_multiplier = c.reverse_multiplier;
+      o.generator = c.motion.generator;
+      o.motion_model = c.motion.model;
+      o.reverse_multiplier = c.cost.reverse_multiplier;
       set = lattice::generatePrimitives(o);
     }
   } catch (const lattice::LatticeError& e) {

@@ -23,8 +23,8 @@ std::vector<Query> randomQueries(const lattice::LatticeGraph& g, int count, unsi
   std::unique_ptr<lattice::LatticePlanner> checker;
   if (solvable) {
     lattice::LatticeConfig c = g.config();
-    c.grid_anchor = true;
-    c.coarse_anchor = true;
+    c.heuristics.grid_anchor = true;
+    c.heuristics.coarse_anchor = true;
     checker.reset(new lattice::LatticePlanner(std::make_shared<lattice::GridMap>(g.map()), c));
   }
   std::mt19937 rng(seed);

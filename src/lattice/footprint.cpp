@@ -111,8 +111,8 @@ bool containsOrigin(const std::vector<std::array<double, 2>>& poly) {
 
 RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
   RobotFootprint f;
-  if (config.footprint.empty()) {
-    const double r = config.robot_radius;
+  if (config.robot.footprint.empty()) {
+    const double r = config.robot.radius;
     if (!std::isfinite(r) || r < 0.0) {
       std::ostringstream m;
       m << "radius " << r << " is not a non-negative number";
@@ -129,7 +129,7 @@ RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
     f.circumscribed_radius = rv;
     return f;
   }
-  f.polygon = config.footprint;
+  f.polygon = config.robot.footprint;
   const auto& p = f.polygon;
   const std::size_t n = p.size();
   if (n < 3) robotError("a polygon needs at least 3 points, got " + std::to_string(n));

@@ -38,15 +38,15 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
                                            const HeuristicGridBuilder* previous)
     : graph_(graph), width_(graph.width()), height_(graph.height()) {
   const LatticeConfig& c = graph.config();
-  needed_[0] = c.grid_anchor;
-  needed_[1] = c.num_inadmissible >= 1;
-  needed_[2] = c.num_inadmissible >= 2;
-  needed_[3] = c.num_inadmissible >= 3;
+  needed_[0] = c.heuristics.grid_anchor;
+  needed_[1] = c.heuristics.num_inadmissible >= 1;
+  needed_[2] = c.heuristics.num_inadmissible >= 2;
+  needed_[3] = c.heuristics.num_inadmissible >= 3;
   // The anchor's grid: cells the centre may occupy (below inscribed), admissible scale.
-  const int connectivity = c.anchor_connectivity;
+  const int connectivity = c.heuristics.anchor_connectivity;
   if (needed_[0]) buildKind(0, connectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1, previous);
   const double s = graph.cheapestUnitsPerCell();
-  const bool kinematic = c.inadmissible == LatticeConfig::Inadmissible::kKinematic;
+  const bool kinematic = c.heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic;
   if (needed_[1] && needed_[0] && kinematic && graph.gridAnchorUnitsPerCell() > 0) {
     // The point robot's grid is the anchor's (where the centre may be), at full scale.
     alias_[1] = 0;
@@ -86,10 +86,10 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
       opening(3, 1);
     }
   }
-  if (c.grid_anchor && c.coarse_anchor) {
+  if (c.heuristics.grid_anchor && c.heuristics.coarse_anchor) {
     coarse_.reset(previous != nullptr && previous->coarse_
                       ? new CoarseLattice(*previous->coarse_, graph, graph.recomputed())
-                      : new CoarseLattice(graph, c.coarse_block));
+                      : new CoarseLattice(graph, c.heuristics.coarse_block));
   }
   // Identical kinds share their data (and their result).
   for (int k = 0; k < kNumGridKinds; ++k) {
@@ -120,7 +120,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
     }
   }
   const std::vector<GridMove> moves = gridMoves(connectivity);
-  const double pen = graph_.config().cost_penalty;
+  const double pen = graph_.config().cost.penalty;
   kind.move_offsets.clear();
   kind.required.clear();
   kind.required_count.clear();

@@ -43,26 +43,26 @@ void validateMap(const GridMap& m) {
 
 void validateConfig(const LatticeConfig& c, double resolution) {
   const auto kind = LatticeError::Kind::kConfig;
-  if (c.mprim_file.empty() && !(c.turning_radius >= kMinTurningRadiusCells * resolution && std::isfinite(c.turning_radius))) {
-    fail(kind, "turning radius " + str(c.turning_radius) + " m is below a hundredth of a cell (" +
+  if (c.motion.mprim_file.empty() && !(c.motion.turning_radius >= kMinTurningRadiusCells * resolution && std::isfinite(c.motion.turning_radius))) {
+    fail(kind, "turning radius " + str(c.motion.turning_radius) + " m is below a hundredth of a cell (" +
                    str(kMinTurningRadiusCells * resolution) + " m on this map of " + str(resolution) +
                    " m cells) or not finite: the primitive generator cannot make a tighter arc, and any radius "
                    "under a cell gives the same primitives (the tightest turn ends on a neighbouring cell)");
   }
-  if (c.coarse_block < 0 || c.coarse_block > kMaxCoarseBlock) {
-    fail(kind, "coarse_block " + std::to_string(c.coarse_block) + " is not in 0.." + std::to_string(kMaxCoarseBlock) +
+  if (c.heuristics.coarse_block < 0 || c.heuristics.coarse_block > kMaxCoarseBlock) {
+    fail(kind, "coarse_block " + std::to_string(c.heuristics.coarse_block) + " is not in 0.." + std::to_string(kMaxCoarseBlock) +
                    " (cells per block side; 0: automatic)");
   }
-  if (c.num_inadmissible < 0 || c.num_inadmissible > 3) fail(kind, "num_inadmissible " + std::to_string(c.num_inadmissible) + " is not in 0..3");
-  if (!std::isfinite(c.cost_penalty) || c.cost_penalty < 0.0 || c.cost_penalty > 10000.0) fail(kind, "cost_penalty " + str(c.cost_penalty) + " is not in [0, 10000]");
-  if (!(c.nominal_speed > 0.0) || !std::isfinite(c.nominal_speed)) fail(kind, "nominal_speed " + str(c.nominal_speed) + " must be positive");
-  if (!(c.time_to_turn_45 >= 0.0) || !std::isfinite(c.time_to_turn_45)) fail(kind, "time_to_turn_45 " + str(c.time_to_turn_45) + " must not be negative");
-  if (c.heuristic_cache_size < 1) fail(kind, "heuristic_cache_size must be at least 1");
-  if (c.anchor_connectivity != 8 && c.anchor_connectivity != 16) {
-    fail(kind, "anchor_connectivity " + std::to_string(c.anchor_connectivity) + " is not 8 or 16");
+  if (c.heuristics.num_inadmissible < 0 || c.heuristics.num_inadmissible > 3) fail(kind, "num_inadmissible " + std::to_string(c.heuristics.num_inadmissible) + " is not in 0..3");
+  if (!std::isfinite(c.cost.penalty) || c.cost.penalty < 0.0 || c.cost.penalty > 10000.0) fail(kind, "cost_penalty " + str(c.cost.penalty) + " is not in [0, 10000]");
+  if (!(c.cost.nominal_speed > 0.0) || !std::isfinite(c.cost.nominal_speed)) fail(kind, "nominal_speed " + str(c.cost.nominal_speed) + " must be positive");
+  if (!(c.cost.time_to_turn_45 >= 0.0) || !std::isfinite(c.cost.time_to_turn_45)) fail(kind, "time_to_turn_45 " + str(c.cost.time_to_turn_45) + " must not be negative");
+  if (c.cache.size < 1) fail(kind, "heuristic_cache_size must be at least 1");
+  if (c.heuristics.anchor_connectivity != 8 && c.heuristics.anchor_connectivity != 16) {
+    fail(kind, "anchor_connectivity " + std::to_string(c.heuristics.anchor_connectivity) + " is not 8 or 16");
   }
-  if (!std::isfinite(c.kinematic_radius) || c.kinematic_radius < 0.0 || c.kinematic_radius > 100.0) {
-    fail(kind, "kinematic_radius " + str(c.kinematic_radius) + " m is not in [0, 100]");
+  if (!std::isfinite(c.heuristics.kinematic_radius) || c.heuristics.kinematic_radius < 0.0 || c.heuristics.kinematic_radius > 100.0) {
+    fail(kind, "kinematic_radius " + str(c.heuristics.kinematic_radius) + " m is not in [0, 100]");
   }
 }
 
@@ -93,7 +93,7 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
   checkRobotSize(limits);
   penalty_q_.resize(256);
   for (int c = 0; c < 256; ++c) {
-    const double q = 65536.0 * config_.cost_penalty * std::min(c, 252) / 252.0;
+    const double q = 65536.0 * config_.cost.penalty * std::min(c, 252) / 252.0;
     penalty_q_[c] = static_cast<std::int64_t>(std::ceil(q - 1e-9));
   }
   buildActions(limits.stop);
@@ -101,14 +101,14 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
   computeClearanceAndOpenings(CellRect{0, 0, map_->width, map_->height});
   throwIfStopped(limits.stop, "clearance and openings");
   computeAnchorScales();
-  if (config_.grid_anchor && config_.kinematic_radius > 0.0 && euclid_per_cell_ > 0.0) {
+  if (config_.heuristics.grid_anchor && config_.heuristics.kinematic_radius > 0.0 && euclid_per_cell_ > 0.0) {
     std::vector<KinematicMove> moves;
     moves.reserve(actions_.size());
     for (const LatticeAction& a : actions_) moves.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
     // At most kMaxKinematicCells: a table's size grows with the square of its radius in cells
     // (16 MB a table at 400 cells and 16 headings), and finer maps do not need a wider one.
     const int radius = std::min(LatticeConfig::kMaxKinematicCells,
-                                static_cast<int>(std::ceil(config_.kinematic_radius / map_->resolution - 1e-9)));
+                                static_cast<int>(std::ceil(config_.heuristics.kinematic_radius / map_->resolution - 1e-9)));
     kinematic_ = KinematicTables::shared(moves, primitives_.heading_angles, euclid_per_cell_, std::max(1, radius));
   }
 }
@@ -117,7 +117,7 @@ void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
   const GridMap& m = *map_;
   const double res = m.resolution;
   // A round robot's inscribed radius is its radius (footprint_ holds the 16-gon around it).
-  const double inscribed = config_.footprint.empty() ? config_.robot_radius : footprint_.inscribed_radius;
+  const double inscribed = config_.robot.footprint.empty() ? config_.robot.radius : footprint_.inscribed_radius;
   const double side = std::min(m.width, m.height) * res;
   if (2.0 * inscribed > side) {
     fail(LatticeError::Kind::kRobot, "robot footprint: its inscribed circle (radius " + str(inscribed) +
@@ -183,7 +183,7 @@ int LatticeGraph::dependenceMargin() const {
   // A capped clearance depends on obstacles within the cap; an opening on obstacles within 2r
   // (the erosion reads r around each cell, the dilation r more). One cell more for rounding.
   double reach = clearance_cap_;
-  if (config_.num_inadmissible >= 2) {
+  if (config_.heuristics.num_inadmissible >= 2) {
     const std::array<double, 2> radii = openingRadii();
     reach = std::max({reach, 2.0 * radii[0], 2.0 * radii[1]});
   }
@@ -198,7 +198,7 @@ void LatticeGraph::linkActionsInto() {
 void LatticeGraph::buildActions(const StopCondition* stop) {
   const double res = map_->resolution;
   const int n = primitives_.num_headings;
-  const double omega = config_.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.time_to_turn_45 : 0.0;
+  const double omega = config_.cost.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.cost.time_to_turn_45 : 0.0;
   action_index_.assign(n + 1, 0);
   for (int h = 0; h < n; ++h) {
     action_index_[h] = actions_.size();
@@ -218,7 +218,7 @@ void LatticeGraph::buildActions(const StopCondition* stop) {
         length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
       }
       const double turn = angleDistance(primitives_.heading_angles[p.start_heading], primitives_.heading_angles[p.end_heading]);
-      const double turn_as_distance = omega > 0.0 ? config_.nominal_speed * turn / omega : 0.0;
+      const double turn_as_distance = omega > 0.0 ? config_.cost.nominal_speed * turn / omega : 0.0;
       const double units = std::ceil(kCostUnitsPerMetre * std::max(length, turn_as_distance) - 1e-6);
       a.base_cost = std::max<Cost>(1, std::llround(units * p.cost_multiplier));
 
@@ -286,16 +286,16 @@ std::vector<float> clearanceClassRadii(std::vector<float> radii) {
 std::array<double, 2> LatticeGraph::openingRadii() const {
   // A round robot's inscribed and circumscribed radii are both its radius (the polygon that
   // approximates the circle is only for the footprint cells).
-  const bool round = config_.footprint.empty();
-  return {(round ? config_.robot_radius : footprint_.inscribed_radius) / map_->resolution,
-          (round ? config_.robot_radius : footprint_.circumscribed_radius) / map_->resolution};
+  const bool round = config_.robot.footprint.empty();
+  return {(round ? config_.robot.radius : footprint_.inscribed_radius) / map_->resolution,
+          (round ? config_.robot.radius : footprint_.circumscribed_radius) / map_->resolution};
 }
 
 void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   recomputed_ = out;
   const int w = map_->width, h = map_->height;
   const std::size_t cells = static_cast<std::size_t>(w) * h;
-  const bool openings = config_.num_inadmissible >= 2;
+  const bool openings = config_.heuristics.num_inadmissible >= 2;
   const std::array<double, 2> radii = openingRadii();
   // Reading the map dependenceMargin() around `out` gives every cell of `out` exactly the value
   // a whole-map computation gives it. Cells near the crop's edge may get wrong values (they do
@@ -385,7 +385,7 @@ void LatticeGraph::computeAnchorScales() {
   // change, |theta - theta_goal|, obeys the triangle inequality on the circle. Adding
   // b x |theta - theta_goal| keeps either anchor consistent if b x dtheta <= base - s |d| (resp.
   // base - k w) for every action: the cost of an edge then covers both terms' decrease.
-  const std::vector<GridMove> moves = gridMoves(config_.anchor_connectivity);
+  const std::vector<GridMove> moves = gridMoves(config_.heuristics.anchor_connectivity);
   const double inf = std::numeric_limits<double>::infinity();
   double euclid = inf, grid = inf;
   std::vector<double> walks(actions_.size(), 0.0);

@@ -41,7 +41,7 @@ struct LatticePlanner::Impl {
   std::list<CacheEntry> cache;  // most recently used first
   std::uint64_t next_serial = 0;
   /// Grids of the planners this one was built from, for goals it has not computed yet, with
-  /// the areas changed since (LatticeConfig::repair_heuristics): repaired on first use.
+  /// the areas changed since (LatticeConfig::Cache::repair): repaired on first use.
   struct StaleEntry {
     GoalKey key;
     std::shared_ptr<const GoalHeuristics> grids;
@@ -53,7 +53,7 @@ struct LatticePlanner::Impl {
   /// A chain of more updates than this is not repaired: its areas may cover the map.
   static constexpr std::size_t kMaxChangedAreas = 32;
 
-  std::size_t capacity() const { return static_cast<std::size_t>(graph->config().heuristic_cache_size); }
+  std::size_t capacity() const { return static_cast<std::size_t>(graph->config().cache.size); }
 
   /// Takes the grids of `previous` (cached or stale) over as stale entries, `changed` added.
   void inheritGrids(Impl& previous, const CellRect& changed) {
@@ -225,7 +225,7 @@ LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<c
   impl_->map = map;
   impl_->graph.reset(new LatticeGraph(*previous.impl_->graph, std::move(map), changed));
   impl_->builder.reset(new HeuristicGridBuilder(*previous.impl_->builder, *impl_->graph));
-  if (impl_->graph->config().repair_heuristics) impl_->inheritGrids(*previous.impl_, impl_->graph->recomputed());
+  if (impl_->graph->config().cache.repair) impl_->inheritGrids(*previous.impl_, impl_->graph->recomputed());
 }
 
 LatticePlanner::~LatticePlanner() = default;
@@ -452,7 +452,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
   // Algorithms that read only the anchor do not need the inadmissible grids.
   const bool uses_inadmissible = (algorithm.algorithm == Algorithm::kAmhaStar || algorithm.algorithm == Algorithm::kMhaStar) &&
-                                 algorithm.max_inadmissible > 0 && g.config().num_inadmissible > 0;
+                                 algorithm.max_inadmissible > 0 && g.config().heuristics.num_inadmissible > 0;
   // Backward search runs from the goal to the start, with heuristics measured from the start.
   const bool backward = g.config().backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
@@ -460,8 +460,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   const int table_heading = any_heading && !backward ? kAnyHeading : to.heading;
   // The grids belong to the request's memory too: 4 bytes a padded cell for each grid it needs.
   const std::size_t padded = static_cast<std::size_t>(g.width() + 4) * (g.height() + 4);
-  std::size_t grid_count = g.config().grid_anchor ? 1 : 0;
-  if (uses_inadmissible) grid_count += static_cast<std::size_t>(g.config().num_inadmissible);
+  std::size_t grid_count = g.config().heuristics.grid_anchor ? 1 : 0;
+  if (uses_inadmissible) grid_count += static_cast<std::size_t>(g.config().heuristics.num_inadmissible);
   if (grid_count * padded * sizeof(std::uint32_t) > limits.max_memory_bytes) {
     result.search.status = SearchStatus::kMemoryLimit;
     return result;
@@ -483,7 +483,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
       return result;
     }
   }
-  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().num_inadmissible : 0, backward, any_heading,
+  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().heuristics.num_inadmissible : 0, backward, any_heading,
                          kinematic);
   if (escape) {
     std::vector<std::pair<LatticeState, Cost>> exits;

@@ -14,7 +14,7 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
     : graph_(graph),
       heur_(std::move(heuristics)),
       kinematic_(std::move(kinematic)),
-      kinematic_inadmissible_(kinematic_.valid() && graph.config().inadmissible == LatticeConfig::Inadmissible::kKinematic),
+      kinematic_inadmissible_(kinematic_.valid() && graph.config().heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic),
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
       backward_(backward),
       width_(graph.width()),
@@ -28,7 +28,7 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   // A grid equal to an earlier one (the same distances at the same scale, e.g. the openings of
   // a robot that fits everywhere its centre does) would be a second copy of one heuristic. The
   // paper's set keeps its copies, so that its results stay as they were.
-  const bool dedupe = graph.config().inadmissible == LatticeConfig::Inadmissible::kKinematic;
+  const bool dedupe = graph.config().heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic;
   int kept = 0;
   for (int k = 1; k <= num_inadmissible_; ++k) {
     bool copy = false;
@@ -45,8 +45,8 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   }
   num_inadmissible_ = kept;
   // Inflation bases only where a heading-aware term is there to be counted once.
-  const bool turn_terms = graph.config().anchor_turn_term && !(any_goal_heading && !backward);
-  bases_ = !graph.config().inflate_heading_terms && grids_[0] != nullptr &&
+  const bool turn_terms = graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
+  bases_ = !graph.config().heuristics.inflate_heading_terms && grids_[0] != nullptr &&
            (coarse_ != nullptr || kinematic_.valid() || turn_terms);
   tiles_x_ = (graph.width() + kTile - 1) / kTile;
   const int tiles_y = (graph.height() + kTile - 1) / kTile;
@@ -59,7 +59,7 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   const std::vector<double>& angles = graph.primitives().heading_angles;
   // A goal of any heading has no heading to turn to (backward, the turn is to the lattice
   // start's heading, which is fixed).
-  const bool turn_term = graph.config().anchor_turn_term && !(any_goal_heading && !backward);
+  const bool turn_term = graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
   for (int h = 0; h < headings_; ++h) {
     const double d = turn_term ? angleDistance(angles[h], angles[goal.heading]) : 0.0;
     turn_euclid_.push_back(graph.euclidTurnUnitsPerRadian() * d);

@@ -123,7 +123,7 @@ PathSmoother::PathSmoother(const LatticeGraph& graph, const SmootherOptions& opt
   }
   piece_length_ = std::max(longestPrimitiveLength(graph), graph.map().resolution);
   const LatticeConfig& c = graph.config();
-  omega_ = c.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / c.time_to_turn_45 : 0.0;
+  omega_ = c.cost.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / c.cost.time_to_turn_45 : 0.0;
   const PrimitiveSet& set = graph.primitives();
   for (const LatticeAction& a : graph.actions()) {
     const MotionPrimitive& p = set.primitives[a.primitive];
@@ -379,7 +379,7 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
       }
       ++last;
     }
-    const double turn_as_distance = omega_ > 0.0 ? c.nominal_speed * turn / omega_ : 0.0;
+    const double turn_as_distance = omega_ > 0.0 ? c.cost.nominal_speed * turn / omega_ : 0.0;
     const double units = std::ceil(kCostUnitsPerMetre * std::max(length, turn_as_distance) - 1e-6);
     const Cost base = std::max<Cost>(1, std::llround(units * multiplier));
     const Cost cost = graph_.costWithPenalty(base, worst);

@@ -15,24 +15,24 @@ PrimitiveSet generatePrimitives(const PrimitiveGeneratorOptions& o) {
 PrimitiveGeneratorOptions generatorOptionsFor(const LatticeConfig& c, double resolution) {
   PrimitiveGeneratorOptions o;
   o.resolution = resolution;
-  o.num_headings = c.num_headings;
-  o.turning_radius = c.turning_radius;
-  o.allow_reverse = c.allow_reverse;
-  o.turn_in_place = c.turn_in_place;
-  o.reverse_multiplier = c.reverse_multiplier;
-  o.generator = c.primitive_generator;
-  o.motion_model = c.motion_model;
+  o.num_headings = c.motion.num_headings;
+  o.turning_radius = c.motion.turning_radius;
+  o.allow_reverse = c.motion.allow_reverse;
+  o.turn_in_place = c.motion.turn_in_place;
+  o.reverse_multiplier = c.cost.reverse_multiplier;
+  o.generator = c.motion.generator;
+  o.motion_model = c.motion.model;
   return o;
 }
 
 PrimitiveSet primitivesFor(const LatticeConfig& c, double resolution) {
-  if (c.mprim_file.empty()) return generatePrimitives(generatorOptionsFor(c, resolution));
-  PrimitiveSet set = readPrimitiveFile(c.mprim_file, resolution);
-  if (c.allow_reverse && isNav2LatticePath(c.mprim_file)) {
-    if (!(c.reverse_multiplier > 0.0) || !std::isfinite(c.reverse_multiplier)) {
+  if (c.motion.mprim_file.empty()) return generatePrimitives(generatorOptionsFor(c, resolution));
+  PrimitiveSet set = readPrimitiveFile(c.motion.mprim_file, resolution);
+  if (c.motion.allow_reverse && isNav2LatticePath(c.motion.mprim_file)) {
+    if (!(c.cost.reverse_multiplier > 0.0) || !std::isfinite(c.cost.reverse_multiplier)) {
       throw LatticeError(LatticeError::Kind::kConfig, "reverse_multiplier must be positive");
     }
-    addBackwardTwins(set, c.reverse_multiplier);
+    addBackwardTwins(set, c.cost.reverse_multiplier);
   }
   return set;
 }

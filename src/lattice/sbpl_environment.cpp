@@ -117,9 +117,9 @@ GridMap loadMapFile(const std::string& path, double movingai_resolution, int mov
 }
 
 void useSbplCostModel(const SbplEnvironment& env, LatticeConfig& config) {
-  config.cost_penalty = 252.0;
-  config.nominal_speed = env.nominal_speed;
-  config.time_to_turn_45 = env.time_to_turn_45;
+  config.cost.penalty = 252.0;
+  config.cost.nominal_speed = env.nominal_speed;
+  config.cost.time_to_turn_45 = env.time_to_turn_45;
 }
 
 }  // namespace lattice

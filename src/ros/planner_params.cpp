@@ -147,50 +147,50 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   PlannerParams p;
   auto& l = p.lattice;
   // Robot.
-  l.footprint = getFootprint(pnh);
+  l.robot.footprint = getFootprint(pnh);
   // Robots of a few metres at most: a larger one (a building-sized disc) only fits a map of
   // kilometres, and its sweeps are refused on fine maps anyway (LatticeGraph, kMaxSweptCells).
   // The map decides the rest when it comes: a robot wider than it is refused, and NO_MAP says so.
-  l.robot_radius = getDouble(pnh, "robot_radius", l.robot_radius, 1e-3, kMaxRobotRadius);
+  l.robot.radius = getDouble(pnh, "robot_radius", l.robot.radius, 1e-3, kMaxRobotRadius);
   // Motion primitives: a file, or generated.
-  l.mprim_file = getString(pnh, "mprim_file", "");
-  l.turning_radius = getDouble(pnh, "turning_radius", l.turning_radius, 1e-3, kMaxTurningRadius);
-  l.num_headings = getInt(pnh, "num_headings", l.num_headings, 8, 1024);
-  if (l.num_headings % 8 != 0) bad(pnh, "num_headings", "must be a multiple of 8");
-  l.allow_reverse = getBool(pnh, "allow_reverse", l.allow_reverse);
-  l.turn_in_place = getBool(pnh, "turn_in_place", l.turn_in_place);
-  const std::string model = getString(pnh, "motion_model", amha::lattice::motionModelName(l.motion_model));
-  if (!amha::lattice::parseMotionModel(model, &l.motion_model)) {
+  l.motion.mprim_file = getString(pnh, "mprim_file", "");
+  l.motion.turning_radius = getDouble(pnh, "turning_radius", l.motion.turning_radius, 1e-3, kMaxTurningRadius);
+  l.motion.num_headings = getInt(pnh, "num_headings", l.motion.num_headings, 8, 1024);
+  if (l.motion.num_headings % 8 != 0) bad(pnh, "num_headings", "must be a multiple of 8");
+  l.motion.allow_reverse = getBool(pnh, "allow_reverse", l.motion.allow_reverse);
+  l.motion.turn_in_place = getBool(pnh, "turn_in_place", l.motion.turn_in_place);
+  const std::string model = getString(pnh, "motion_model", amha::lattice::motionModelName(l.motion.model));
+  if (!amha::lattice::parseMotionModel(model, &l.motion.model)) {
     bad(pnh, "motion_model", "'" + model + "' is not diff, ackermann or omni");
   }
   const std::string generator = getString(pnh, "primitive_generator", "near-minimal");
   if (generator != "near-minimal" && generator != "legacy") {
     bad(pnh, "primitive_generator", "'" + generator + "' is not near-minimal or legacy");
   }
-  l.primitive_generator = generator == "legacy" ? amha::lattice::PrimitiveGenerator::kLegacy
+  l.motion.generator = generator == "legacy" ? amha::lattice::PrimitiveGenerator::kLegacy
                                                 : amha::lattice::PrimitiveGenerator::kNearMinimal;
-  l.reverse_multiplier = getDouble(pnh, "reverse_penalty", l.reverse_multiplier, 1e-3, 1e6);
-  l.cost_penalty = getDouble(pnh, "cost_penalty", l.cost_penalty, 0.0, 1e6);
-  l.num_inadmissible = getInt(pnh, "num_inadmissible", l.num_inadmissible, 0, 3);
-  l.nominal_speed = getDouble(pnh, "nominal_speed", l.nominal_speed, 1e-3, 100.0);
-  l.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.time_to_turn_45, 0.0, 1000.0);
-  l.grid_anchor = getBool(pnh, "grid_anchor", l.grid_anchor);
-  l.coarse_anchor = getBool(pnh, "coarse_anchor", l.coarse_anchor);
-  l.coarse_block = getInt(pnh, "coarse_block", l.coarse_block, 0, amha::lattice::kMaxCoarseBlock);
-  l.kinematic_radius = getDouble(pnh, "kinematic_radius", l.kinematic_radius, 0.0, 100.0);
-  l.anchor_connectivity = getInt(pnh, "anchor_connectivity", l.anchor_connectivity, 8, 16);
-  if (l.anchor_connectivity != 8 && l.anchor_connectivity != 16) bad(pnh, "anchor_connectivity", "must be 8 or 16");
+  l.cost.reverse_multiplier = getDouble(pnh, "reverse_penalty", l.cost.reverse_multiplier, 1e-3, 1e6);
+  l.cost.penalty = getDouble(pnh, "cost_penalty", l.cost.penalty, 0.0, 1e6);
+  l.heuristics.num_inadmissible = getInt(pnh, "num_inadmissible", l.heuristics.num_inadmissible, 0, 3);
+  l.cost.nominal_speed = getDouble(pnh, "nominal_speed", l.cost.nominal_speed, 1e-3, 100.0);
+  l.cost.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.cost.time_to_turn_45, 0.0, 1000.0);
+  l.heuristics.grid_anchor = getBool(pnh, "grid_anchor", l.heuristics.grid_anchor);
+  l.heuristics.coarse_anchor = getBool(pnh, "coarse_anchor", l.heuristics.coarse_anchor);
+  l.heuristics.coarse_block = getInt(pnh, "coarse_block", l.heuristics.coarse_block, 0, amha::lattice::kMaxCoarseBlock);
+  l.heuristics.kinematic_radius = getDouble(pnh, "kinematic_radius", l.heuristics.kinematic_radius, 0.0, 100.0);
+  l.heuristics.anchor_connectivity = getInt(pnh, "anchor_connectivity", l.heuristics.anchor_connectivity, 8, 16);
+  if (l.heuristics.anchor_connectivity != 8 && l.heuristics.anchor_connectivity != 16) bad(pnh, "anchor_connectivity", "must be 8 or 16");
   const std::string inadmissible = getString(pnh, "inadmissible_heuristics", "kinematic");
   if (inadmissible != "kinematic" && inadmissible != "paper") {
     bad(pnh, "inadmissible_heuristics", "must be kinematic or paper, not '" + inadmissible + "'");
   }
-  l.inadmissible = inadmissible == "paper" ? amha::lattice::LatticeConfig::Inadmissible::kPaper
+  l.heuristics.inadmissible = inadmissible == "paper" ? amha::lattice::LatticeConfig::Inadmissible::kPaper
                                            : amha::lattice::LatticeConfig::Inadmissible::kKinematic;
-  l.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.anchor_turn_term);
-  l.inflate_heading_terms = getBool(pnh, "inflate_heading_terms", l.inflate_heading_terms);
+  l.heuristics.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.heuristics.anchor_turn_term);
+  l.heuristics.inflate_heading_terms = getBool(pnh, "inflate_heading_terms", l.heuristics.inflate_heading_terms);
   l.backward_search = getBool(pnh, "backward_search", l.backward_search);
-  l.heuristic_cache_size = getInt(pnh, "heuristic_cache_size", l.heuristic_cache_size, 1, 64);
-  l.repair_heuristics = getBool(pnh, "repair_heuristics", l.repair_heuristics);
+  l.cache.size = getInt(pnh, "heuristic_cache_size", l.cache.size, 1, 64);
+  l.cache.repair = getBool(pnh, "repair_heuristics", l.cache.repair);
   // Map.
   p.occupancy.lethal_threshold =
       getInt(pnh, "lethal_threshold", p.occupancy.lethal_threshold, 1, 100);

@@ -75,7 +75,7 @@ TEST(RandomQueries, ValidConnectedFarApartAndSeeded) {
   // Mark a band of cells inscribed: queries must not start or end with the centre in it.
   for (int y = 0; y < map->height; ++y) map->cost[y * map->width + 200] = lattice::kInscribedCost;
   lattice::LatticeConfig config;
-  config.robot_radius = 0.25;
+  config.robot.radius = 0.25;
   const lattice::LatticeGraph graph(map, config);
   const std::vector<Query> qs = randomQueries(graph, 15, 3, 8.0);
   ASSERT_EQ(qs.size(), 15u);

@@ -40,38 +40,38 @@ std::int8_t cellValue(std::uint8_t b) {
 void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   LatticeConfig c;
   const double res = map->resolution;
-  c.num_headings = in.u8() & 1 ? 16 : 8;
-  c.turning_radius = res * (1 + in.u8() % 4);
-  c.allow_reverse = in.u8() & 1;
-  c.turn_in_place = in.u8() & 1;
+  c.motion.num_headings = in.u8() & 1 ? 16 : 8;
+  c.motion.turning_radius = res * (1 + in.u8() % 4);
+  c.motion.allow_reverse = in.u8() & 1;
+  c.motion.turn_in_place = in.u8() & 1;
   const std::uint8_t robot = in.u8() % 4;
   if (robot == 0) {
-    c.robot_radius = 0.0;
+    c.robot.radius = 0.0;
   } else if (robot == 1) {
-    c.robot_radius = res * (in.u8() % 24) / 8.0;
+    c.robot.radius = res * (in.u8() % 24) / 8.0;
   } else {
     const double hl = res * (1 + in.u8() % 16) / 8.0, hw = res * (1 + in.u8() % 12) / 8.0;
-    c.footprint = {{-hl, -hw}, {hl, -hw}, {hl, hw}, {-hl, hw}};
+    c.robot.footprint = {{-hl, -hw}, {hl, -hw}, {hl, hw}, {-hl, hw}};
   }
-  c.cost_penalty = (in.u8() % 5) * 1.5;
-  c.num_inadmissible = in.u8() % 4;
-  c.grid_anchor = in.u8() % 4 != 0;
-  c.coarse_anchor = in.u8() & 1;
-  c.coarse_block = in.u8() % 4;
+  c.cost.penalty = (in.u8() % 5) * 1.5;
+  c.heuristics.num_inadmissible = in.u8() % 4;
+  c.heuristics.grid_anchor = in.u8() % 4 != 0;
+  c.heuristics.coarse_anchor = in.u8() & 1;
+  c.heuristics.coarse_block = in.u8() % 4;
   c.backward_search = in.u8() % 4 == 0;
-  c.time_to_turn_45 = (in.u8() % 3) * 0.5;
+  c.cost.time_to_turn_45 = (in.u8() % 3) * 0.5;
   // Now and then a hostile robot or motion model (issue 22: a 100 m radius, a 1e-9 m turning
   // radius, a coarse block of 1e5, NaN): refused with a LatticeError, or stopped by the setup's
   // limits, never a hang, a crash or gigabytes.
   if (in.u8() == 0xA5) {
     switch (in.u8() % 4) {
-      case 0: c.footprint.clear(); c.robot_radius = in.f64(); break;
-      case 1: c.turning_radius = in.f64(); break;
-      case 2: c.coarse_block = in.i32(); break;
+      case 0: c.robot.footprint.clear(); c.robot.radius = in.f64(); break;
+      case 1: c.motion.turning_radius = in.f64(); break;
+      case 2: c.heuristics.coarse_block = in.i32(); break;
       default: {
         const double k = std::ldexp(1.0, in.u8() % 48);
-        c.robot_radius *= k;
-        for (auto& v : c.footprint) v = {v[0] * k, v[1] * k};
+        c.robot.radius *= k;
+        for (auto& v : c.robot.footprint) v = {v[0] * k, v[1] * k};
       }
     }
   }
@@ -139,7 +139,7 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   if (!g.stateValid(s.x, s.y, s.heading) || !g.stateValid(t.x, t.y, t.heading)) return;
 
   // The same search as the facade's, on a problem whose state ids we can read back.
-  const bool inadmissible = (pc.algorithm == Algorithm::kAmhaStar || pc.algorithm == Algorithm::kMhaStar) && c.num_inadmissible > 0;
+  const bool inadmissible = (pc.algorithm == Algorithm::kAmhaStar || pc.algorithm == Algorithm::kMhaStar) && c.heuristics.num_inadmissible > 0;
   const bool backward = c.backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
   // With the facade's kinematic table too: it changes the heuristics and the keys.
@@ -149,7 +149,7 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
         backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, to.heading, nullptr);
   }
   LatticeProblem problem(g, builder.compute(to.x, to.y, to.heading, inadmissible, 1, backward), from, to,
-                         inadmissible ? c.num_inadmissible : 0, backward, false, kinematic);
+                         inadmissible ? c.heuristics.num_inadmissible : 0, backward, false, kinematic);
   const test::ValidatorModel model = test::modelFor(g);
   std::vector<Cost> costs;
   Cost previous = kInfiniteCost;

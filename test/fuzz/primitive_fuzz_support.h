@@ -77,9 +77,9 @@ inline void planOnSmallMap(const lattice::PrimitiveSet& set, const std::string& 
   map->cost.assign(24 * 20, kFreeCost);
   for (int y = 4; y < 12; ++y) map->cost[y * 24 + 14] = kLethalCost;
   LatticeConfig config;
-  config.mprim_file = file;
-  config.robot_radius = 0.7 * res;
-  config.allow_reverse = allow_reverse;
+  config.motion.mprim_file = file;
+  config.robot.radius = 0.7 * res;
+  config.motion.allow_reverse = allow_reverse;
   try {
     LatticePlanner planner(map, config);
     const int n = set.num_headings;

@@ -90,15 +90,15 @@ void report(const char* where, const FirstSolution& f) {
 
 TEST(AnaStarOnTheLattice, ItsFirstSolutionReexpandsAsThePapersRuleDoes) {
   LatticeConfig c;
-  c.robot_radius = 0.2;
-  c.turning_radius = 0.5;
+  c.robot.radius = 0.2;
+  c.motion.turning_radius = 0.5;
   auto willow = std::make_shared<GridMap>(
       loadMapServerMap(std::string(AMHA_SOURCE_DIR) + "/maps/willow_garage/willow-2010-02-18-0.10.yaml"));
   report("willow 17,55,0 -> 26,6,1.57", anaUntilFirstSolution(willow, c, {17, 55, 0}, {26, 6, 1.57}));
   AMHA_REQUIRE_SHARED_DATA(data);
   SbplEnvironment env;
   auto cubicle = std::make_shared<GridMap>(loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
-  c.robot_radius = 0.15;
+  c.robot.radius = 0.15;
   useSbplCostModel(env, c);
   report("cubicle (its start and end)", anaUntilFirstSolution(cubicle, c, env.start, env.goal));
 }

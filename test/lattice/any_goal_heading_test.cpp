@@ -176,8 +176,8 @@ TEST(AnyGoalHeading, PlannerTakesTheHeadingThatFitsAndTheCheapest) {
     }
   }
   LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.footprint = test::rectangle(0.2, 0.1);  // 0.4 m x 0.2 m: fits along the corridor only
+  c.motion.turning_radius = 0.2;
+  c.robot.footprint = test::rectangle(0.2, 0.1);  // 0.4 m x 0.2 m: fits along the corridor only
   LatticePlanner planner(map, c);
   const Pose2D start{0.5, 1.0, 0.0}, across{3.0, 1.0, M_PI / 2};
   const PlannerConfig astar = defaultConfig(Algorithm::kAStar);

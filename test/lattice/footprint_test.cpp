@@ -83,12 +83,12 @@ TEST(FootprintTest, SegmentTouchingCornersMarksAllNeighbours) {
 
 TEST(FootprintTest, RobotFromConfig) {
   LatticeConfig c;
-  c.footprint = test::rectangle(0.3, 0.2);
+  c.robot.footprint = test::rectangle(0.3, 0.2);
   const RobotFootprint r = RobotFootprint::fromConfig(c);
   EXPECT_NEAR(r.inscribed_radius, 0.2, 1e-12);
   EXPECT_NEAR(r.circumscribed_radius, std::hypot(0.3, 0.2), 1e-12);
-  c.footprint.clear();
-  c.robot_radius = 0.25;
+  c.robot.footprint.clear();
+  c.robot.radius = 0.25;
   const RobotFootprint round = RobotFootprint::fromConfig(c);
   EXPECT_EQ(round.polygon.size(), 16u);
   for (std::size_t k = 0; k < round.polygon.size(); ++k) {  // the 16-gon contains the circle
@@ -98,13 +98,13 @@ TEST(FootprintTest, RobotFromConfig) {
     EXPECT_GE(dist, 0.25 * (1 - 1e-12));
   }
   EXPECT_NEAR(round.inscribed_radius, 0.25, 1e-12);
-  c.robot_radius = 0.0;
+  c.robot.radius = 0.0;
   EXPECT_TRUE(RobotFootprint::fromConfig(c).polygon.empty());
-  c.robot_radius = -1.0;
+  c.robot.radius = -1.0;
   EXPECT_THROW(RobotFootprint::fromConfig(c), LatticeError);
-  c.footprint = {{0, 0}, {1, 0}};
+  c.robot.footprint = {{0, 0}, {1, 0}};
   EXPECT_THROW(RobotFootprint::fromConfig(c), LatticeError);
-  c.footprint = {{0, 0}, {2, 1}, {2, 0}, {0, 2}};  // a bow tie
+  c.robot.footprint = {{0, 0}, {2, 1}, {2, 0}, {0, 2}};  // a bow tie
   try {
     RobotFootprint::fromConfig(c);
     ADD_FAILURE();
@@ -112,7 +112,7 @@ TEST(FootprintTest, RobotFromConfig) {
     EXPECT_EQ(e.kind(), LatticeError::Kind::kRobot);
     EXPECT_NE(std::string(e.what()).find("self-intersecting"), std::string::npos);
   }
-  c.footprint = {{0, 0}, {1, 0}, {2, 0}};
+  c.robot.footprint = {{0, 0}, {1, 0}, {2, 0}};
   EXPECT_THROW(RobotFootprint::fromConfig(c), LatticeError);  // zero area
 }
 
@@ -121,7 +121,7 @@ TEST(FootprintTest, RobotFromConfig) {
 // poses, and stay within the footprint grown by a third of a cell.
 void checkSweeps(const PrimitiveSet& set, const Poly& footprint) {
   LatticeConfig c;
-  c.footprint = footprint;
+  c.robot.footprint = footprint;
   const RobotFootprint f = RobotFootprint::fromConfig(c);
   const double res = set.resolution;
   for (int h = 0; h < set.num_headings; ++h) {

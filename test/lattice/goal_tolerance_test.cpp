@@ -105,11 +105,11 @@ TEST(GoalToleranceTest, ChoiceEqualsBruteForce) {
   int found = 0, none_reachable = 0, no_free = 0;
   for (unsigned seed = 1; seed <= 12; ++seed) {
     LatticeConfig c;
-    c.turning_radius = 0.2;
+    c.motion.turning_radius = 0.2;
     if (seed % 2 == 0) {
-      c.footprint = test::rectangle(0.12, 0.05);
+      c.robot.footprint = test::rectangle(0.12, 0.05);
     } else {
-      c.robot_radius = 0.08;
+      c.robot.radius = 0.08;
     }
     LatticeGraph g(clutteredMap(seed, 48), c);
     std::mt19937 rng(seed);
@@ -151,9 +151,9 @@ TEST(GoalToleranceTest, ChoiceEqualsBruteForce) {
 TEST(GoalToleranceTest, EveryStateTheLatticeReachesIsInTheComponent) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     LatticeConfig c;
-    c.turning_radius = 0.2;
-    c.allow_reverse = seed % 2 == 0;
-    c.footprint = test::rectangle(0.1, 0.04);
+    c.motion.turning_radius = 0.2;
+    c.motion.allow_reverse = seed % 2 == 0;
+    c.robot.footprint = test::rectangle(0.1, 0.04);
     LatticeGraph g(clutteredMap(seed, 40), c);
     std::mt19937 rng(seed);
     std::size_t largest = 0;
@@ -210,8 +210,8 @@ Pose2D cellCentre(int x, int y, double theta = 0.0) { return {(x + 0.5) * 0.05, 
 
 LatticeConfig boxRobot() {
   LatticeConfig c;
-  c.robot_radius = 0.1;  // 2 cells
-  c.turning_radius = 0.2;
+  c.robot.radius = 0.1;  // 2 cells
+  c.motion.turning_radius = 0.2;
   return c;
 }
 

@@ -55,17 +55,17 @@ struct Robot {
 std::vector<Robot> robots() {
   std::vector<Robot> out;
   LatticeConfig round;
-  round.robot_radius = 0.2;
+  round.robot.radius = 0.2;
   out.push_back({"round robot", round});
   LatticeConfig polygon;
-  polygon.footprint = test::rectangle(0.35, 0.15);  // openings differ: four grids of their own
+  polygon.robot.footprint = test::rectangle(0.35, 0.15);  // openings differ: four grids of their own
   out.push_back({"rectangular robot", polygon});
   LatticeConfig point;
-  point.robot_radius = 0.0;  // grids that alias each other
+  point.robot.radius = 0.0;  // grids that alias each other
   out.push_back({"point robot", point});
   LatticeConfig plain;
-  plain.robot_radius = 0.15;
-  plain.num_inadmissible = 1;
+  plain.robot.radius = 0.15;
+  plain.heuristics.num_inadmissible = 1;
   out.push_back({"round robot, no openings, exact changes", plain, true});
   return out;
 }
@@ -167,9 +167,9 @@ TEST(HeuristicRepair, GridsWithSaturatedDistancesComeOutEqual) {
   map->resolution = 0.05;
   map->cost.assign(static_cast<std::size_t>(map->width) * map->height, 200);
   LatticeConfig config;
-  config.robot_radius = 0.0;
-  config.cost_penalty = 10000.0;
-  config.coarse_anchor = false;
+  config.robot.radius = 0.0;
+  config.cost.penalty = 10000.0;
+  config.heuristics.coarse_anchor = false;
   auto graph = std::make_unique<LatticeGraph>(map, config);
   const HeuristicGridBuilder builder(*graph);
   const auto old = builder.compute(3, 3, 0, true, 1);

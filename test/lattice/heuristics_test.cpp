@@ -76,15 +76,15 @@ TEST(HeuristicGridTest, PointRobotGridEqualsReferenceDijkstra) {
     const int gx = 35, gy = 25;
     map->cost[gy * map->width + gx] = 0;
     LatticeConfig c;
-    c.turning_radius = 0.2;
-    c.robot_radius = 0.0;
-    c.cost_penalty = seed == 2 ? 252.0 : 3.0;
-    c.grid_anchor = false;
-    c.num_inadmissible = 1;
+    c.motion.turning_radius = 0.2;
+    c.robot.radius = 0.0;
+    c.cost.penalty = seed == 2 ? 252.0 : 3.0;
+    c.heuristics.grid_anchor = false;
+    c.heuristics.num_inadmissible = 1;
     LatticeGraph g(map, c);
     HeuristicGridBuilder b(g);
     const DistanceGrid grid = b.computeOne(GridKind::kPointRobot, gx, gy);
-    const auto ref = referenceGrid(*map, gx, gy, g.cheapestUnitsPerCell(), c.cost_penalty, kLethalCost - 1);
+    const auto ref = referenceGrid(*map, gx, gy, g.cheapestUnitsPerCell(), c.cost.penalty, kLethalCost - 1);
     for (int y = 0; y < map->height; ++y) {
       for (int x = 0; x < map->width; ++x) {
         const std::uint64_t r = ref[y * map->width + x];
@@ -152,16 +152,16 @@ TEST(HeuristicGridTest, AnchorGridEqualsReferenceDijkstraForBothConnectivities) 
       map->cost[gy * map->width + gx] = 0;
       for (int k = 0; k < 60; ++k) map->cost[(seed * 7919 + k * 104729) % map->cost.size()] = kInscribedCost;
       LatticeConfig c;
-      c.turning_radius = 0.2;
-      c.robot_radius = 0.0;
-      c.cost_penalty = seed == 5 ? 252.0 : 3.0;
-      c.anchor_connectivity = connectivity;
-      c.coarse_anchor = false;
-      c.num_inadmissible = 0;
+      c.motion.turning_radius = 0.2;
+      c.robot.radius = 0.0;
+      c.cost.penalty = seed == 5 ? 252.0 : 3.0;
+      c.heuristics.anchor_connectivity = connectivity;
+      c.heuristics.coarse_anchor = false;
+      c.heuristics.num_inadmissible = 0;
       LatticeGraph g(map, c);
       HeuristicGridBuilder b(g);
       const DistanceGrid grid = b.computeOne(GridKind::kAnchor, gx, gy);
-      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorUnitsPerCell(), c.cost_penalty, kInscribedCost - 1,
+      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorUnitsPerCell(), c.cost.penalty, kInscribedCost - 1,
                                           gridMoves(connectivity));
       for (int y = 0; y < map->height; ++y) {
         for (int x = 0; x < map->width; ++x) {
@@ -233,13 +233,13 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfGeneratedLattices) {
       const bool grid = variant < 2;
       auto map = test::randomMap(120, 90, 0.05, seed, 30, 180);
       LatticeConfig c;
-      c.anchor_turn_term = variant != 1;
-      c.turning_radius = 0.3;
-      c.allow_reverse = seed == 12;
-      c.footprint = test::rectangle(0.12, 0.08);
-      c.cost_penalty = seed == 11 ? 252.0 : 2.0;
-      c.time_to_turn_45 = seed == 11 ? 3.0 : 0.6;
-      c.grid_anchor = grid;
+      c.heuristics.anchor_turn_term = variant != 1;
+      c.motion.turning_radius = 0.3;
+      c.motion.allow_reverse = seed == 12;
+      c.robot.footprint = test::rectangle(0.12, 0.08);
+      c.cost.penalty = seed == 11 ? 252.0 : 2.0;
+      c.cost.time_to_turn_45 = seed == 11 ? 3.0 : 0.6;
+      c.heuristics.grid_anchor = grid;
       map->cost[45 * 120 + 60] = 0;
       LatticeFixture f = makeFixture(map, c);
       LatticeState goal{60, 45, 3};
@@ -253,11 +253,11 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
   AMHA_REQUIRE_SHARED_DATA(data);
   SbplEnvironment env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
   LatticeConfig c;
-  c.mprim_file = data + "/sbpl/pr2.mprim";
-  c.footprint = test::rectangle(0.01, 0.01);
+  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
+  c.robot.footprint = test::rectangle(0.01, 0.01);
   useSbplCostModel(env, c);
   for (bool turn_term : {false, true}) {
-    c.anchor_turn_term = turn_term;
+    c.heuristics.anchor_turn_term = turn_term;
     LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);
     checkConsistencyOnRandomEdges(f, LatticeState{240, 80, 0}, 20000, 5);
     checkConsistencyOnRandomEdges(f, LatticeState{160, 320, 0}, 20000, 6, true);
@@ -266,21 +266,21 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
 
 // Weighted A* (epsilon = 3) on SBPL's cubicle with the PR2's primitives (turns in place):
 // with the heading-aware terms inflated, its first path costs many more expansions, as turning
-// early pays (LatticeConfig::inflate_heading_terms); both paths stay within the bound.
+// early pays (LatticeConfig::Heuristics::inflate_heading_terms); both paths stay within the bound.
 TEST(AnchorTest, HeadingTermsCountedOnceSaveWeightedExpansions) {
   AMHA_REQUIRE_SHARED_DATA(data);
   SbplEnvironment env;
   auto cubicle = std::make_shared<GridMap>(loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
   LatticeConfig c;
-  c.mprim_file = data + "/sbpl/pr2.mprim";
-  c.footprint = test::rectangle(0.01, 0.01);
+  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
+  c.robot.footprint = test::rectangle(0.01, 0.01);
   useSbplCostModel(env, c);
   PlannerConfig wastar = defaultConfig(Algorithm::kWeightedAStar);
   wastar.w1 = 3.0;
   std::uint64_t expansions[2] = {0, 0};
   Cost costs[2] = {0, 0};
   for (int inflate = 0; inflate < 2; ++inflate) {
-    c.inflate_heading_terms = inflate == 1;
+    c.heuristics.inflate_heading_terms = inflate == 1;
     LatticePlanner planner(cubicle, c);
     const PlanResult r = planner.plan(env.start, env.goal, wastar, SearchLimits());
     ASSERT_FALSE(r.search.solutions.empty());
@@ -300,15 +300,15 @@ TEST(AnchorTest, WithoutTurnTermConsistentAndHeadingFree) {
   for (bool coarse : {false, true}) {
     auto map = test::randomMap(120, 90, 0.05, 11, 30, 180);
     LatticeConfig c;
-    c.turning_radius = 0.3;
-    c.footprint = test::rectangle(0.12, 0.08);
-    c.cost_penalty = 252.0;
-    c.time_to_turn_45 = 3.0;
-    c.coarse_anchor = coarse;
+    c.motion.turning_radius = 0.3;
+    c.robot.footprint = test::rectangle(0.12, 0.08);
+    c.cost.penalty = 252.0;
+    c.cost.time_to_turn_45 = 3.0;
+    c.heuristics.coarse_anchor = coarse;
     map->cost[45 * 120 + 60] = 0;
-    c.anchor_turn_term = true;
+    c.heuristics.anchor_turn_term = true;
     LatticeFixture with = makeFixture(map, c);
-    c.anchor_turn_term = false;
+    c.heuristics.anchor_turn_term = false;
     LatticeFixture without = makeFixture(map, c);
     const LatticeState goal{60, 45, 3};
     checkConsistencyOnRandomEdges(without, goal, 4000, 11);
@@ -342,11 +342,11 @@ TEST(AnchorTest, WithoutTurnTermConsistentAndHeadingFree) {
 TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
   auto map = test::randomMap(40, 30, 0.05, 21, 10, 120);
   LatticeConfig c;
-  c.turning_radius = 0.25;
-  c.allow_reverse = true;
-  c.footprint = test::rectangle(0.07, 0.05);
-  c.cost_penalty = 5.0;
-  c.time_to_turn_45 = 1.5;
+  c.motion.turning_radius = 0.25;
+  c.motion.allow_reverse = true;
+  c.robot.footprint = test::rectangle(0.07, 0.05);
+  c.cost.penalty = 5.0;
+  c.cost.time_to_turn_45 = 1.5;
   map->cost[15 * 40 + 20] = 0;
   LatticeFixture f = makeFixture(map, c);
   const LatticeState goal{20, 15, 5};
@@ -379,7 +379,7 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
     }
   }
   for (bool turn_term : {false, true}) {
-    c.anchor_turn_term = turn_term;
+    c.heuristics.anchor_turn_term = turn_term;
     LatticeFixture ft = makeFixture(map, c);
     auto heur = ft.builder->compute(goal.x, goal.y, goal.heading);
     LatticeProblem p(*ft.graph, heur, goal, goal, 3);
@@ -406,7 +406,7 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
 TEST(HeuristicGridTest, GoalsCachedAndGridsShared) {
   auto map = test::randomMap(60, 60, 0.05, 4, 0, 0);  // no obstacles: the openings equal free space
   LatticeConfig c;
-  c.robot_radius = 0.0;
+  c.robot.radius = 0.0;
   LatticeFixture f = makeFixture(map, c);
   auto h = f.builder->compute(10, 10, 0);
   ASSERT_TRUE(h->grids[1] && h->grids[2] && h->grids[3]);

@@ -84,7 +84,7 @@ TEST(ImageCodecsModule, NotLoadedToPlanOnCfgMapsLoadedForYamlImageMaps) {
     const std::string dir = test::tempDir();
     const SbplEnvironment env = loadSbplEnvironment(writeCfg(dir));
     LatticeConfig config;
-    config.robot_radius = 0.1;
+    config.robot.radius = 0.1;
     LatticePlanner planner(std::make_shared<GridMap>(env.map), config);
     SearchLimits limits;
     limits.time_limit_s = 30.0;

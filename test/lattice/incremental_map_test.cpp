@@ -88,17 +88,17 @@ CellRect around(const Pose2D& p, double resolution, int half) {
 std::vector<Robot> robots() {
   std::vector<Robot> out;
   LatticeConfig round;
-  round.robot_radius = 0.2;  // 4 cells at 0.05 m
+  round.robot.radius = 0.2;  // 4 cells at 0.05 m
   out.push_back({"round robot, 3 inadmissible", round});
   LatticeConfig polygon;
-  polygon.footprint = test::rectangle(0.35, 0.15);  // openings of 3 and 7.6 cells: they differ
+  polygon.robot.footprint = test::rectangle(0.35, 0.15);  // openings of 3 and 7.6 cells: they differ
   out.push_back({"rectangular robot", polygon});
   LatticeConfig point;
-  point.robot_radius = 0.0;
+  point.robot.radius = 0.0;
   out.push_back({"point robot", point});
   LatticeConfig one;
-  one.robot_radius = 0.3;
-  one.num_inadmissible = 1;  // no openings at all
+  one.robot.radius = 0.3;
+  one.heuristics.num_inadmissible = 1;  // no openings at all
   out.push_back({"round robot, 1 inadmissible", one});
   return out;
 }
@@ -218,7 +218,7 @@ TEST(LatticeIncremental, AnEmptyChangeCopiesAndAnotherGridIsRefused) {
 TEST(LatticeIncremental, AnUpdatedPlannerPlansLikeAFreshOne) {
   auto map = test::randomMap(160, 120, 0.05, 11, 14, 30);
   LatticeConfig config;
-  config.footprint = test::rectangle(0.25, 0.15);
+  config.robot.footprint = test::rectangle(0.25, 0.15);
   auto planner = std::make_unique<LatticePlanner>(map, config);
   // Wall off the middle, leaving a gap, in three updates.
   const CellRect walls[] = {{78, 0, 82, 50}, {78, 60, 82, 120}, {0, 0, 3, 3}};
@@ -265,8 +265,8 @@ TEST(LatticeIncremental, AnUpdatedPlannerRepairsTheGridsOfItsPredecessor) {
   auto map = test::randomMap(160, 120, 0.05, 11, 14, 30);
   for (const bool repair : {true, false}) {
     LatticeConfig config;
-    config.repair_heuristics = repair;
-    config.robot_radius = 0.15;
+    config.cache.repair = repair;
+    config.robot.radius = 0.15;
     auto planner = std::make_unique<LatticePlanner>(map, config);
     const Pose2D start{1.0, 1.0, 0.0}, goal{6.6, 4.4, 1.57};
     // The robot's surroundings made free.
@@ -310,8 +310,8 @@ TEST(LatticeIncremental, AnUpdatedPlannerRepairsTheGridsOfItsPredecessor) {
 TEST(LatticeIncremental, KeptGridsAndCachedOnesStayWithinTheCacheSize) {
   auto map = test::randomMap(120, 90, 0.05, 2, 0, 0);  // open: every query is valid
   LatticeConfig config;
-  config.robot_radius = 0.1;
-  config.heuristic_cache_size = 2;
+  config.robot.radius = 0.1;
+  config.cache.size = 2;
   auto planner = std::make_unique<LatticePlanner>(map, config);
   const Pose2D start{0.5, 0.5, 0.0}, a{5.0, 4.0, 0.0}, b{1.0, 4.0, 0.0}, c{5.0, 0.5, 0.0};
   PlannerConfig search;
@@ -338,7 +338,7 @@ TEST(LatticeIncremental, KeptGridsAndCachedOnesStayWithinTheCacheSize) {
 TEST(LatticeIncremental, ConcurrentQueriesWhileAPlannerIsBuiltFromThisOne) {
   auto map = test::randomMap(140, 100, 0.05, 4, 10, 20);
   LatticeConfig config;
-  config.robot_radius = 0.1;
+  config.robot.radius = 0.1;
   auto first = std::make_shared<LatticePlanner>(map, config);
   // A start and goal clear of the random obstacles and of the update.
   const Pose2D start{0.6, 0.6, 0.0}, goal{6.3, 4.4, 0.0};

@@ -122,20 +122,20 @@ struct NamedConfig {
 std::vector<NamedConfig> primitiveSets() {
   std::vector<NamedConfig> sets;
   LatticeConfig c;
-  c.turning_radius = 0.2;
+  c.motion.turning_radius = 0.2;
   sets.push_back({"generated, turns in place", c, 0.05});
-  c.turn_in_place = false;
+  c.motion.turn_in_place = false;
   sets.push_back({"generated, no turns in place", c, 0.05});
-  c.allow_reverse = true;
+  c.motion.allow_reverse = true;
   sets.push_back({"generated, reverse", c, 0.05});
   c = LatticeConfig();
-  c.num_headings = 8;
-  c.turning_radius = 0.15;
+  c.motion.num_headings = 8;
+  c.motion.turning_radius = 0.15;
   sets.push_back({"generated, 8 headings", c, 0.05});
   const std::string data = test::sharedData();
   if (!data.empty()) {
     c = LatticeConfig();
-    c.mprim_file = data + "/sbpl/pr2.mprim";
+    c.motion.mprim_file = data + "/sbpl/pr2.mprim";
     sets.push_back({"SBPL pr2.mprim (uniform headings)", c, 0.025});
   }
   return sets;
@@ -143,7 +143,7 @@ std::vector<NamedConfig> primitiveSets() {
 
 TEST(KinematicTable, EveryEntryIsTheCappedExactCostForEveryHeadingAndDirection) {
   for (NamedConfig& set : primitiveSets()) {
-    set.config.kinematic_radius = 12 * set.resolution;  // R = 12 cells: quick, and every kind of entry
+    set.config.heuristics.kinematic_radius = 12 * set.resolution;  // R = 12 cells: quick, and every kind of entry
     // The table does not depend on the map; the map only has to hold the robot (0.4 m wide),
     // which the lattice checks: 24 cells of 0.025 m.
     auto map = std::make_shared<GridMap>();
@@ -217,14 +217,14 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     const auto map = test::randomMap(40, 36, 0.05, seed + 70, 4, seed % 2 ? 120 : 0);
     LatticeConfig c;
-    c.turning_radius = 0.2;
-    c.turn_in_place = seed % 3 != 0;
-    c.allow_reverse = seed % 3 == 2;
-    c.footprint = test::rectangle(0.08, 0.05);
-    c.cost_penalty = seed % 2 ? 3.0 : 1.0;
-    c.kinematic_radius = 0.05 * (6 + seed);  // a small disc: many edges cross its edge
-    c.coarse_anchor = seed % 2 == 0;
-    c.anchor_connectivity = seed % 4 == 1 ? 8 : 16;
+    c.motion.turning_radius = 0.2;
+    c.motion.turn_in_place = seed % 3 != 0;
+    c.motion.allow_reverse = seed % 3 == 2;
+    c.robot.footprint = test::rectangle(0.08, 0.05);
+    c.cost.penalty = seed % 2 ? 3.0 : 1.0;
+    c.heuristics.kinematic_radius = 0.05 * (6 + seed);  // a small disc: many edges cross its edge
+    c.heuristics.coarse_anchor = seed % 2 == 0;
+    c.heuristics.anchor_connectivity = seed % 4 == 1 ? 8 : 16;
     const LatticeGraph g(map, c);
     const HeuristicGridBuilder b(g);
     // A goal that many states can reach (a forward-only robot facing a wall has few).
@@ -297,9 +297,9 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
 // outside" is then inconsistent on that edge; the capped table is not.
 TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
   LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.turn_in_place = false;
-  c.kinematic_radius = 0.05 * 20;
+  c.motion.turning_radius = 0.2;
+  c.motion.turn_in_place = false;
+  c.heuristics.kinematic_radius = 0.05 * 20;
   auto map = std::make_shared<GridMap>();
   map->width = map->height = 8;
   map->resolution = 0.05;
@@ -337,8 +337,8 @@ TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
 // A mutation: one entry raised by one unit. The exactness check above catches it.
 TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
   LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.kinematic_radius = 0.05 * 10;
+  c.motion.turning_radius = 0.2;
+  c.heuristics.kinematic_radius = 0.05 * 10;
   auto map = std::make_shared<GridMap>();
   map->width = map->height = 8;
   map->resolution = 0.05;
@@ -358,27 +358,27 @@ TEST(KinematicTable, SharedBetweenPlannersAndBuiltOnce) {
   auto a = test::randomMap(50, 40, 0.05, 3, 6, 0);
   auto b = test::randomMap(50, 40, 0.05, 4, 9, 80);
   LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.kinematic_radius = 0.6;
+  c.motion.turning_radius = 0.2;
+  c.heuristics.kinematic_radius = 0.6;
   LatticePlanner pa(a, c), pb(b, c);
   EXPECT_TRUE(pa.prepareKinematicTables());
   EXPECT_GT(pa.kinematicTableBytes(), 0u);
   EXPECT_EQ(pa.kinematicTableBytes(), pb.kinematicTableBytes()) << "one set of tables for both maps";
   LatticeConfig other = c;
-  other.cost_penalty = 2.0;  // free-cell costs are the same: still shared
+  other.cost.penalty = 2.0;  // free-cell costs are the same: still shared
   LatticePlanner pc(a, other);
   EXPECT_EQ(pc.kinematicTableBytes(), pa.kinematicTableBytes());
   LatticeConfig turning = c;
-  turning.turning_radius = 0.3;  // other primitives: other tables, none built yet
+  turning.motion.turning_radius = 0.3;  // other primitives: other tables, none built yet
   LatticePlanner pd(a, turning);
   EXPECT_EQ(pd.kinematicTableBytes(), 0u);
 }
 
 TEST(KinematicTable, ABuildIsCancellableAndRetried) {
   LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.kinematic_radius = 3.0;  // 60 cells: long enough to stop in the middle
-  c.time_to_turn_45 = 0.7;   // tables of their own (other costs than the other tests')
+  c.motion.turning_radius = 0.2;
+  c.heuristics.kinematic_radius = 3.0;  // 60 cells: long enough to stop in the middle
+  c.cost.time_to_turn_45 = 0.7;   // tables of their own (other costs than the other tests')
   auto map = std::make_shared<GridMap>();
   map->width = map->height = 8;
   map->resolution = 0.05;

@@ -186,8 +186,8 @@ TEST(LatticeLimits, MemoryCapEndsASearchOnABigOpenMap) {
     map->cost[static_cast<std::size_t>(gy + k) * n + gx + 10] = kLethalCost;
   }
   LatticeConfig config;
-  config.grid_anchor = false;  // the Euclidean anchor cannot see the wall
-  config.num_inadmissible = 0;
+  config.heuristics.grid_anchor = false;  // the Euclidean anchor cannot see the wall
+  config.heuristics.num_inadmissible = 0;
   LatticePlanner planner(map, config);
   for (Algorithm a : {Algorithm::kAStar, Algorithm::kAraStar}) {
     SearchLimits limits;
@@ -324,21 +324,21 @@ TEST(LatticeLimits, RobotsWiderThanTheMapOrSweepingMillionsOfCellsAreRefusedAtOn
   LatticeError::Kind kind = LatticeError::Kind::kMap;
   LatticeConfig c;
   for (double r : {15.01, 30.0, 100.0, 1e6}) {
-    c.robot_radius = r;
+    c.robot.radius = r;
     const auto t0 = Clock::now();
     const std::string why = setupError(map, c, &kind);
     EXPECT_LT(secondsSince(t0), 0.5) << r;
     EXPECT_EQ(kind, LatticeError::Kind::kRobot) << r;
     EXPECT_NE(why.find("is wider than the map (40 x 30 m)"), std::string::npos) << why;
   }
-  c.robot_radius = 14.0;  // a disc that fits, but sweeps of ~6 x 10^6 cells
+  c.robot.radius = 14.0;  // a disc that fits, but sweeps of ~6 x 10^6 cells
   const auto t0 = Clock::now();
   const std::string why = setupError(map, c, &kind);
   EXPECT_LT(secondsSince(t0), 0.5);
   EXPECT_EQ(kind, LatticeError::Kind::kRobot);
   EXPECT_NE(why.find("would touch up to"), std::string::npos) << why;
   // A big robot within both limits is still built.
-  c.robot_radius = 1.5;
+  c.robot.radius = 1.5;
   EXPECT_EQ(setupError(map, c, &kind), "");
 }
 
@@ -350,16 +350,16 @@ TEST(LatticeLimits, TinyTurningRadiiAndHugeCoarseBlocksAreRefused) {
   LatticeConfig c;
   const double inf = std::numeric_limits<double>::infinity();
   for (double r : {1e-9, 0.0, -0.5, std::nan(""), -inf, inf, 0.0009}) {
-    c.turning_radius = r;
+    c.motion.turning_radius = r;
     const std::string why = setupError(map, c, &kind);
     EXPECT_EQ(kind, LatticeError::Kind::kConfig) << r;
     EXPECT_NE(why.find("below a hundredth of a cell (0.001 m"), std::string::npos) << why;
   }
-  c.turning_radius = 0.001;  // a hundredth of a cell: the tightest arcs
+  c.motion.turning_radius = 0.001;  // a hundredth of a cell: the tightest arcs
   EXPECT_EQ(setupError(map, c, &kind), "");
   c = LatticeConfig();
   for (int k : {-1, kMaxCoarseBlock + 1, 100000, INT_MAX}) {
-    c.coarse_block = k;
+    c.heuristics.coarse_block = k;
     const auto t0 = Clock::now();
     const std::string why = setupError(map, c, &kind);
     EXPECT_LT(secondsSince(t0), 0.5);
@@ -374,7 +374,7 @@ TEST(LatticeLimits, TinyTurningRadiiAndHugeCoarseBlocksAreRefused) {
 TEST(LatticeLimits, SetupHonoursCancelTimeBudgetAndMemoryCap) {
   auto map = test::randomMap(600, 600, 0.1, 1, 0, 0);
   LatticeConfig c;
-  c.robot_radius = 8.0;  // ~3.5 M swept cells with the default primitives: seconds to rasterise
+  c.robot.radius = 8.0;  // ~3.5 M swept cells with the default primitives: seconds to rasterise
   auto stopped = [&](const SearchLimits& limits, double* took) {
     const auto t0 = Clock::now();
     try {
@@ -415,7 +415,7 @@ TEST(LatticeLimits, SetupHonoursCancelTimeBudgetAndMemoryCap) {
   }
 
   // A plan's heuristic grids count against its memory cap too (4 grids of 4 bytes a cell).
-  c.robot_radius = 0.2;
+  c.robot.radius = 0.2;
   LatticePlanner planner(map, c);
   SearchLimits small;
   small.max_memory_bytes = 600 * 600;
@@ -511,9 +511,9 @@ TEST(LatticeLimits, ConcurrentCallsForTheSameGridsOneCancelled) {
 TEST(LatticeConcurrent, PlanFromSeveralThreadsWithCancels) {
   auto map = test::randomMap(70, 70, 0.05, 5, 20, 120);
   LatticeConfig config;
-  config.turning_radius = 0.2;
-  config.footprint = test::rectangle(0.09, 0.06);
-  config.heuristic_cache_size = 2;  // fewer slots than goals: entries are evicted while in use
+  config.motion.turning_radius = 0.2;
+  config.robot.footprint = test::rectangle(0.09, 0.06);
+  config.cache.size = 2;  // fewer slots than goals: entries are evicted while in use
   LatticePlanner planner(map, config);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(0.1, 3.4), angle(-M_PI, M_PI);

@@ -72,8 +72,8 @@ TEST(MprimRegression, LongPrimitivesStillBuildQuickly) {
   }
   auto map = test::randomMap(24, 20, 0.025, 1, 0, 0);
   LatticeConfig c;
-  c.mprim_file = path;
-  c.robot_radius = 0.02;
+  c.motion.mprim_file = path;
+  c.robot.radius = 0.02;
   const auto t0 = Clock::now();
   LatticePlanner planner(map, c);
   const double s = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -199,7 +199,7 @@ TEST(OccupancyRegression, OriginsTooFarAwayAreRefused) {
   map->origin_x = 500000.0;
   map->origin_y = 9999000.0;
   LatticeConfig c;
-  c.robot_radius = 0.05;
+  c.robot.radius = 0.05;
   LatticePlanner planner(map, c);
   const Pose2D s{500000.5, 9999000.5, 0.0}, g{500001.5, 9999001.2, 1.0};
   EXPECT_EQ(planner.checkQuery(s, g, nullptr), QueryError::kNone);
@@ -221,7 +221,7 @@ TEST(OccupancyRegression, OriginYawsBeyondAMillionRadiansAreRefused) {
   auto map = test::randomMap(20, 20, 0.05, 1, 0, 0);
   map->origin_yaw = 2.0 * M_PI * 1000.0 + 0.3;
   LatticeConfig c;
-  c.robot_radius = 0.05;
+  c.robot.radius = 0.05;
   LatticePlanner planner(map, c);
   LatticeGraph g(map, c);
   for (int h = 0; h < g.numHeadings(); ++h) {
@@ -240,7 +240,7 @@ TEST(OccupancyRegression, OriginYawsBeyondAMillionRadiansAreRefused) {
 TEST(OccupancyRegression, NonFinitePosesWithGoalOptionsAreRefusedBeforeUse) {
   auto map = test::randomMap(20, 20, 0.05, 1, 0, 0);
   LatticeConfig c;
-  c.robot_radius = 0.05;
+  c.robot.radius = 0.05;
   LatticePlanner planner(map, c);
   GoalOptions options;
   options.tolerance = 0.3;

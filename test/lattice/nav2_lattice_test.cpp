@@ -223,17 +223,17 @@ TEST(Nav2Lattice, GeneratedSetsReadBackFromBothFormats) {
   EXPECT_EQ(forward_only.primitives.size() * 2, with.primitives.size());
   // ... and a planner given the file with allow_reverse adds them back, as Smac does.
   LatticeConfig c;
-  c.mprim_file = dir + "/r.json";
-  c.allow_reverse = true;
-  c.reverse_multiplier = o.reverse_multiplier;
+  c.motion.mprim_file = dir + "/r.json";
+  c.motion.allow_reverse = true;
+  c.cost.reverse_multiplier = o.reverse_multiplier;
   expectSameMotions(with, primitivesFor(c, 0.05), 1e-6);
 }
 
 TEST(Nav2Lattice, PlannerUsesAJsonFileAndChecksItsResolution) {
   auto map = test::randomMap(60, 60, 0.1, 3, 0, 0);
   LatticeConfig c;
-  c.mprim_file = kFixture;
-  c.robot_radius = 0.1;
+  c.motion.mprim_file = kFixture;
+  c.robot.radius = 0.1;
   const LatticeGraph g(map, c);
   EXPECT_EQ(g.numHeadings(), 8);
   EXPECT_EQ(g.actions().size(), 44u);

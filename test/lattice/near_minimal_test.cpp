@@ -285,12 +285,12 @@ TEST(NearMinimalGenerator, OptimaNeverWorseThanTheLegacySetsAndSometimesBetter) 
   for (unsigned seed = 1; seed <= 6; ++seed) {
     auto map = test::randomMap(90, 90, 0.05, seed, 14, seed % 2 ? 100 : 0);
     LatticeConfig c;
-    c.robot_radius = 0.08;
-    c.turning_radius = 0.3;
-    c.motion_model = seed % 3 == 0 ? MotionModel::kDifferential : MotionModel::kAckermann;
-    c.cost_penalty = 1.0;
+    c.robot.radius = 0.08;
+    c.motion.turning_radius = 0.3;
+    c.motion.model = seed % 3 == 0 ? MotionModel::kDifferential : MotionModel::kAckermann;
+    c.cost.penalty = 1.0;
     LatticeConfig legacy_config = c;
-    legacy_config.primitive_generator = PrimitiveGenerator::kLegacy;
+    legacy_config.motion.generator = PrimitiveGenerator::kLegacy;
     LatticePlanner fresh(map, c), legacy(map, legacy_config);
     const LatticeGraph graph(map, c);
     std::mt19937 rng(seed);

@@ -70,25 +70,25 @@ struct Model {
 std::vector<Model> models() {
   std::vector<Model> out;
   LatticeConfig c;
-  c.num_inadmissible = 2;
-  c.turning_radius = 0.4;
-  c.robot_radius = 0.15;
+  c.heuristics.num_inadmissible = 2;
+  c.motion.turning_radius = 0.4;
+  c.robot.radius = 0.15;
   out.push_back({"round", c});
-  c.robot_radius = 0.0;
+  c.robot.radius = 0.0;
   out.push_back({"point", c});
-  c.footprint = test::rectangle(0.3, 0.15);
-  c.allow_reverse = true;
-  c.turning_radius = 0.3;
+  c.robot.footprint = test::rectangle(0.3, 0.15);
+  c.motion.allow_reverse = true;
+  c.motion.turning_radius = 0.3;
   out.push_back({"rectangle with reverse", c});
-  c.footprint = {{0.35, 0.0}, {-0.2, 0.2}, {-0.1, 0.0}, {-0.2, -0.2}};  // concave arrow
-  c.turn_in_place = false;
-  c.cost_penalty = 3.0;
+  c.robot.footprint = {{0.35, 0.0}, {-0.2, 0.2}, {-0.1, 0.0}, {-0.2, -0.2}};  // concave arrow
+  c.motion.turn_in_place = false;
+  c.cost.penalty = 3.0;
   out.push_back({"arrow, no turn in place", c});
-  c.footprint = test::rectangle(0.2, 0.1);
-  c.allow_reverse = false;
-  c.turn_in_place = true;
-  c.num_headings = 8;
-  c.turning_radius = 0.25;
+  c.robot.footprint = test::rectangle(0.2, 0.1);
+  c.motion.allow_reverse = false;
+  c.motion.turn_in_place = true;
+  c.motion.num_headings = 8;
+  c.motion.turning_radius = 0.25;
   out.push_back({"8 headings", c});
   return out;
 }
@@ -229,8 +229,8 @@ TEST(PathSmootherTest, StreamPublishesNoCostlierPathAndValidBounds) {
   for (unsigned seed = 1; seed <= 12; ++seed) {
     auto map = test::randomMap(80, 70, 0.05, 300 + seed, 14, seed % 2 ? 120 : 0);
     LatticeConfig c;
-    c.turning_radius = 0.3;
-    c.robot_radius = 0.1;
+    c.motion.turning_radius = 0.3;
+    c.robot.radius = 0.1;
     LatticePlanner planner(map, c);
     const LatticeGraph& g = planner.graph();
     const PathSmoother smoother(g);
@@ -314,9 +314,9 @@ TEST(PathSmootherTest, StreamRepublishesAnEarlierSmoothedPathThatCostsLess) {
   // more than solution 1's, so solution 1's is sent again, with solution 2's bounds.
   auto map = test::randomMap(120, 40, 0.05, 1, 0, 0);
   LatticeConfig c;
-  c.turning_radius = 0.3;
-  c.robot_radius = 0.1;
-  c.time_to_turn_45 = 0.1;  // quick turns on the spot
+  c.motion.turning_radius = 0.3;
+  c.robot.radius = 0.1;
+  c.cost.time_to_turn_45 = 0.1;  // quick turns on the spot
   const LatticeGraph g(map, c);
   const PathSmoother smoother(g);
   const int n = g.numHeadings();
@@ -368,8 +368,8 @@ TEST(PathSmootherTest, SmoothsTheBundledMapWithinTheGuarantees) {
   // Long paths on the Willow Garage map (the demo's), a round robot.
   AMHA_REQUIRE_SHARED_DATA(data);
   LatticeConfig c;
-  c.robot_radius = 0.2;
-  c.turning_radius = 0.5;
+  c.robot.radius = 0.2;
+  c.motion.turning_radius = 0.5;
   OccupancyConversion conv;
   auto map = std::make_shared<GridMap>(loadMapServerMap(data + "/maps/ros/willow_garage/willow-2010-02-18-0.10.yaml", conv));
   LatticePlanner planner(map, c);
@@ -392,9 +392,9 @@ TEST(PathSmootherTest, SbplPrimitiveFilesKeepEveryGuarantee) {
   // centres; backward motions; turns in place), a square robot, random maps with costs.
   AMHA_REQUIRE_SHARED_DATA(data);
   LatticeConfig c;
-  c.mprim_file = data + "/sbpl/pr2.mprim";
-  c.footprint = test::rectangle(0.15, 0.1);
-  c.cost_penalty = 2.0;
+  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
+  c.robot.footprint = test::rectangle(0.15, 0.1);
+  c.cost.penalty = 2.0;
   int paths = 0, shortened = 0;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     auto map = test::randomMap(140, 120, 0.025, 500 + seed, 12, seed % 2 ? 100 : 0);
@@ -431,7 +431,7 @@ TEST(PathSmootherTest, SbplPrimitiveFilesKeepEveryGuarantee) {
 TEST(PathSmootherTest, RefusesWhatIsNotALatticePath) {
   auto map = test::randomMap(40, 40, 0.05, 5, 0, 0);
   LatticeConfig c;
-  c.turning_radius = 0.3;
+  c.motion.turning_radius = 0.3;
   const LatticeGraph g(map, c);
   const PathSmoother smoother(g);
   std::vector<Pose2D> path = {g.stateToPose(10, 10, 0)};

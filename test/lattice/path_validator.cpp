@@ -154,9 +154,9 @@ ValidatorModel modelFor(const LatticeGraph& graph) {
   m.map = &graph.map();
   m.primitives = &graph.primitives();
   m.polygon = graph.footprint().polygon;
-  m.cost_penalty = graph.config().cost_penalty;
-  m.nominal_speed = graph.config().nominal_speed;
-  m.time_to_turn_45 = graph.config().time_to_turn_45;
+  m.cost_penalty = graph.config().cost.penalty;
+  m.nominal_speed = graph.config().cost.nominal_speed;
+  m.time_to_turn_45 = graph.config().cost.time_to_turn_45;
   return m;
 }
 

@@ -27,7 +27,7 @@ TEST(LatticePlannerTest, QueryErrors) {
   map->origin_x = -1.0;
   map->origin_y = 2.0;
   LatticeConfig c;
-  c.robot_radius = 0.15;
+  c.robot.radius = 0.15;
   LatticePlanner planner(map, c);
   const Pose2D ok{0.0, 3.0, 0.0}, ok2{1.2, 3.0, 1.0};
   std::string msg;
@@ -52,13 +52,13 @@ TEST(LatticePlannerTest, QueryErrors) {
 TEST(LatticePlannerTest, BadConfigurations) {
   auto map = test::randomMap(20, 20, 0.1, 1, 0, 0);
   LatticeConfig c;
-  c.num_headings = 12;
+  c.motion.num_headings = 12;
   EXPECT_THROW(LatticePlanner(map, c), LatticeError);
   c = LatticeConfig();
-  c.num_inadmissible = 4;
+  c.heuristics.num_inadmissible = 4;
   EXPECT_THROW(LatticePlanner(map, c), LatticeError);
   c = LatticeConfig();
-  c.mprim_file = "/nonexistent.mprim";
+  c.motion.mprim_file = "/nonexistent.mprim";
   try {
     LatticePlanner p(map, c);
     ADD_FAILURE();
@@ -78,12 +78,12 @@ struct Scenario {
 Scenario scenario(unsigned seed, int size) {
   Scenario s;
   s.map = test::randomMap(size, size, 0.05, seed, size / 3, seed % 2 ? 150 : 0);
-  s.config.turning_radius = 0.2;
-  s.config.allow_reverse = seed % 3 == 0;
-  s.config.footprint = test::rectangle(0.09, 0.06);
-  s.config.cost_penalty = seed % 2 ? 4.0 : 1.0;
-  s.config.time_to_turn_45 = 1.0;
-  s.config.grid_anchor = seed % 4 != 1;
+  s.config.motion.turning_radius = 0.2;
+  s.config.motion.allow_reverse = seed % 3 == 0;
+  s.config.robot.footprint = test::rectangle(0.09, 0.06);
+  s.config.cost.penalty = seed % 2 ? 4.0 : 1.0;
+  s.config.cost.time_to_turn_45 = 1.0;
+  s.config.heuristics.grid_anchor = seed % 4 != 1;
   return s;
 }
 
@@ -308,8 +308,8 @@ TEST(LatticePlannerTest, CubicleWithPr2PrimitivesValidates) {
   SbplEnvironment env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
   auto map = std::make_shared<GridMap>(env.map);
   LatticeConfig c;
-  c.mprim_file = data + "/sbpl/pr2.mprim";
-  c.footprint = test::rectangle(0.01, 0.01);
+  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
+  c.robot.footprint = test::rectangle(0.01, 0.01);
   useSbplCostModel(env, c);
   LatticeGraph g(map, c);
   HeuristicGridBuilder b(g);

@@ -244,8 +244,8 @@ std::shared_ptr<GridMap> corridor() {
 
 LatticeConfig corridorRobot() {
   LatticeConfig c;
-  c.footprint = test::rectangle(0.15, 0.08);
-  c.turning_radius = 0.3;
+  c.robot.footprint = test::rectangle(0.15, 0.08);
+  c.motion.turning_radius = 0.3;
   return c;
 }
 

@@ -76,14 +76,14 @@ std::vector<Cost> dijkstraFrom(const LatticeGraph& g, const LatticeState& s,
 
 LatticeConfig smallRobot(unsigned seed) {
   LatticeConfig c;
-  c.turning_radius = 0.2;
-  c.footprint = rectangle(0.09, 0.05);
-  c.allow_reverse = seed % 3 == 0;
-  c.cost_penalty = seed % 2 ? 4.0 : 1.0;
-  c.time_to_turn_45 = 1.0;
-  c.grid_anchor = seed % 4 != 1;
-  c.coarse_anchor = seed % 4 != 2;
-  c.anchor_turn_term = seed % 5 == 0;
+  c.motion.turning_radius = 0.2;
+  c.robot.footprint = rectangle(0.09, 0.05);
+  c.motion.allow_reverse = seed % 3 == 0;
+  c.cost.penalty = seed % 2 ? 4.0 : 1.0;
+  c.cost.time_to_turn_45 = 1.0;
+  c.heuristics.grid_anchor = seed % 4 != 1;
+  c.heuristics.coarse_anchor = seed % 4 != 2;
+  c.heuristics.anchor_turn_term = seed % 5 == 0;
   return c;
 }
 

@@ -42,7 +42,7 @@ struct RobotFootprint {
   double inscribed_radius = 0.0;      ///< largest circle about the origin inside the polygon
   double circumscribed_radius = 0.0;  ///< smallest circle about the origin containing it
 
-  /// From LatticeConfig::footprint / robot_radius. Throws LatticeError (kRobot) for fewer than
+  /// From LatticeConfig::Robot (footprint, or radius). Throws LatticeError (kRobot) for fewer than
   /// 3 vertices, non-finite values, zero area, a self-intersecting polygon or a bad radius.
   static RobotFootprint fromConfig(const LatticeConfig& config);
 

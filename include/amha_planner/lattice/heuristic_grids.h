@@ -41,7 +41,7 @@ struct DistanceGrid {
   std::uint32_t at(int x, int y) const { return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)]; }
 };
 
-/// Which grid; the anchor grid exists only with LatticeConfig::grid_anchor.
+/// Which grid; the anchor grid exists only with LatticeConfig::Heuristics::grid_anchor.
 enum class GridKind { kAnchor = 0, kPointRobot = 1, kInscribedOpening = 2, kCircumscribedOpening = 3 };
 constexpr int kNumGridKinds = 4;
 

@@ -13,7 +13,7 @@
 namespace amha {
 namespace lattice {
 
-/// Largest LatticeConfig::coarse_block: the abstraction's edges cost coarse_block^2 work per
+/// Largest LatticeConfig::Heuristics::coarse_block: the abstraction's edges cost coarse_block^2 work per
 /// action to build (about a second at 1024 with 16 headings).
 constexpr int kMaxCoarseBlock = 1024;
 /// Smallest turning radius (in cells of the map) the primitive generator is given: far below it an
@@ -38,97 +38,113 @@ enum class PrimitiveGenerator {
   kLegacy,       ///< the first generator: arcs to the neighbouring headings only
 };
 
-/// The robot and its motion model.
+/// The robot, its motions, what edges cost, the heuristics and their cache.
 struct LatticeConfig {
-  /// Primitive file, by extension: a Nav2 lattice file (.json) or an SBPL .mprim file (any
-  /// other); empty: generate primitives from the options below.
-  std::string mprim_file;
-  int num_headings = 16;         ///< generated primitives: a multiple of 8
-  double turning_radius = 0.5;   ///< generated primitives: minimum turning radius (m)
-  bool allow_reverse = false;    ///< generated primitives: add backward motions
-  bool turn_in_place = true;     ///< generated primitives: add turns on the spot
-  std::vector<std::array<double, 2>> footprint;  ///< polygon (m, base frame); empty: a circle
-  double robot_radius = 0.2;     ///< used when footprint is empty
-  /// Edge cost = length x primitive multiplier x (1 + cost_penalty x worst cell cost / 252).
+  /// The robot's shape.
+  struct Robot {
+    std::vector<std::array<double, 2>> footprint;  ///< polygon (m, base frame); empty: a circle
+    double radius = 0.2;                           ///< used when footprint is empty
+  };
+  /// How it moves: a primitive file, or the generator's options.
+  struct Motion {
+    /// Primitive file, by extension: a Nav2 lattice file (.json) or an SBPL .mprim file (any
+    /// other); empty: generate primitives from the options below.
+    std::string mprim_file;
+    int num_headings = 16;        ///< generated primitives: a multiple of 8
+    double turning_radius = 0.5;  ///< generated primitives: minimum turning radius (m)
+    /// Add backward motions, costed CostModel::reverse_multiplier times their forward twins; with a
+    /// Nav2 file (.json, which has forward motions only) it adds them too, as Smac's
+    /// allow_reverse_expansion does.
+    bool allow_reverse = false;
+    /// Generated primitives: add turns on the spot (false also keeps kDifferential and kOmni
+    /// from turning on the spot).
+    bool turn_in_place = true;
+    PrimitiveGenerator generator = PrimitiveGenerator::kNearMinimal;  ///< generated primitives
+    MotionModel model = MotionModel::kDifferential;                   ///< generated primitives
+  };
+  /// What an edge costs: length x primitive multiplier x (1 + penalty x worst cell cost / 252).
   /// Precisely (integers, kCostUnitsPerMetre units): base = round(ceil(kCostUnitsPerMetre x
   /// max(L, nominal_speed x |dtheta| / omega)) x multiplier), where L is the length of the
   /// primitive's intermediate-pose polyline, dtheta its heading change and omega =
   /// (pi / 4) / time_to_turn_45 (so turning in place is costed by time, as in SBPL); then
-  /// cost = base + ceil(base x Q[c] / 65536) with Q[c] = ceil(65536 x cost_penalty x c / 252)
-  /// and c the worst cost of the cells the robot's centre crosses. cost_penalty = 252 gives
+  /// cost = base + ceil(base x Q[c] / 65536) with Q[c] = ceil(65536 x penalty x c / 252)
+  /// and c the worst cost of the cells the robot's centre crosses. penalty = 252 gives
   /// SBPL's cost x (c + 1). See docs/lattice.md.
-  double cost_penalty = 1.0;
-  /// Inadmissible heuristics (0..3): a Dijkstra for a point robot, then Dijkstras on maps with
-  /// passages narrower than the inscribed / circumscribed diameter blocked (the paper's three).
-  int num_inadmissible = 3;
+  struct CostModel {
+    double penalty = 1.0;
+    /// Robot speed (m/s) and the time to turn 45 degrees in place (s): SBPL's nominalvel and
+    /// timetoturn45degsinplace (these defaults are sbpl_lattice_planner's). They only matter
+    /// through the turning-time term above.
+    double nominal_speed = 0.4;
+    double time_to_turn_45 = 0.6;
+    double reverse_multiplier = 3.0;  ///< backward motions cost this times their forward twins
+  };
   /// How the inadmissible heuristics are made (kinematic_table.h for the table):
   ///  - kKinematic: each is the larger of its Dijkstra and the anchor's kinematic table, as Nav2's
   ///    Smac combines its obstacle and distance heuristics; the point robot's Dijkstra is the
   ///    anchor's grid at full Euclidean scale (no extra Dijkstra);
   ///  - kPaper: the paper's 8-connected Dijkstras alone, at the Euclidean scale.
   enum class Inadmissible { kKinematic, kPaper };
-  Inadmissible inadmissible = Inadmissible::kKinematic;
-
-  /// Robot speed (m/s) and the time to turn 45 degrees in place (s): SBPL's nominalvel and
-  /// timetoturn45degsinplace (these defaults are sbpl_lattice_planner's). They only matter
-  /// through the turning-time term of the edge cost above.
-  double nominal_speed = 0.4;
-  double time_to_turn_45 = 0.6;
-  /// Anchor heuristic: true = max(Euclidean, an admissible cost-aware 8-connected grid
-  /// Dijkstra whose step costs are scaled so it is a relaxation of the lattice); false = the
-  /// Euclidean distance alone (the paper's anchor). Both are admissible and consistent.
-  bool grid_anchor = true;
-  /// Moves of the anchor's grid: 8 (the neighbours) or 16 (also the knight moves, whose
-  /// directions are those of the usual 16-heading lattices: the grid's scale, and so its
-  /// distances, then fall less short of the lattice's; see docs/lattice.md).
-  int anchor_connectivity = 16;
-  /// With grid_anchor: also take the exact cost-to-go on a block abstraction of the lattice
-  /// (cells grouped into coarse_block x coarse_block blocks; 0 = automatic: at most ~250k
-  /// abstract states, see coarse_lattice.h), which knows what turning costs. Admissible and
-  /// consistent.
-  bool coarse_anchor = true;
-  int coarse_block = 0;
-  /// With grid_anchor: also take the obstacle-free kinematic cost-to-go (the exact cost of the
-  /// cheapest primitive sequence on an empty map, kinematic_table.h) within this radius of the
-  /// goal, in metres (0: off). Admissible and consistent; the tables are built once per
-  /// primitive set and shared by every query and map.
-  double kinematic_radius = 15.0;
-  /// The table covers at most this many cells of radius (20 m at 5 cm, 10 m at 2.5 cm).
+  /// The kinematic table covers at most this many cells of radius (20 m at 5 cm, 10 m at 2.5 cm).
   static constexpr int kMaxKinematicCells = 400;
-  /// Add to the Euclidean and grid parts of the anchor a turning term: the cheapest cost of
-  /// turning to the goal's heading (admissible and consistent either way). Off by default:
-  /// under an inflation weight it draws the search towards states that face the goal's heading
-  /// everywhere on the map, which on large maps with cheap turns costs up to 30x more
-  /// expansions, and where turns are expensive (SBPL's cubicle: 20 s per 45 degrees) the block
-  /// abstraction already knows their cost, so the term changes little there
-  /// (docs/results/lattice.md, 1b).
-  bool anchor_turn_term = false;
-  /// Whether a weight w (ARA*'s epsilon, A-MHA*'s w1) inflates the heuristics' heading-aware
-  /// terms too: the block abstraction, the kinematic table and the turning terms. Off (the
-  /// default): the keys are g + h + (w - 1) b, with b the heading-blind part of h (the larger
-  /// of the Euclidean and grid terms; an inadmissible heuristic's Dijkstra), so those terms
-  /// count once (SearchProblem::hasInflationBases: every bound holds). Inflated, they reward
-  /// turning early, by w times what the turn saves in h for once what it costs: with turns in
-  /// place, weighted A* (epsilon = 3) on SBPL's Willow Garage map at 2.5 cm expands 507,737
-  /// states for its first path with them inflated and 18,468 without
-  /// (docs/results/lattice.md, 1.0). On: the paper's keys, g + w h.
-  bool inflate_heading_terms = false;
+  /// The heuristics: the admissible anchor's terms and the inadmissible ones.
+  struct Heuristics {
+    /// Inadmissible heuristics (0..3): a Dijkstra for a point robot, then Dijkstras on maps with
+    /// passages narrower than the inscribed / circumscribed diameter blocked (the paper's three).
+    int num_inadmissible = 3;
+    Inadmissible inadmissible = Inadmissible::kKinematic;
+    /// Anchor: true = max(Euclidean, an admissible cost-aware grid Dijkstra whose step costs are
+    /// scaled so it is a relaxation of the lattice); false = the Euclidean distance alone (the
+    /// paper's anchor). Both are admissible and consistent.
+    bool grid_anchor = true;
+    /// Moves of the anchor's grid: 8 (the neighbours) or 16 (also the knight moves, whose
+    /// directions are those of the usual 16-heading lattices: the grid's scale, and so its
+    /// distances, then fall less short of the lattice's; see docs/lattice.md).
+    int anchor_connectivity = 16;
+    /// With grid_anchor: also take the exact cost-to-go on a block abstraction of the lattice
+    /// (cells grouped into coarse_block x coarse_block blocks; 0 = automatic: at most ~250k
+    /// abstract states, see coarse_lattice.h), which knows what turning costs. Admissible and
+    /// consistent.
+    bool coarse_anchor = true;
+    int coarse_block = 0;
+    /// With grid_anchor: also take the obstacle-free kinematic cost-to-go (the exact cost of
+    /// the cheapest primitive sequence on an empty map, kinematic_table.h) within this radius
+    /// of the goal, in metres (0: off). Admissible and consistent; the tables are built once
+    /// per primitive set and shared by every query and map.
+    double kinematic_radius = 15.0;
+    /// Add to the Euclidean and grid parts of the anchor a turning term: the cheapest cost of
+    /// turning to the goal's heading (admissible and consistent either way). Off by default:
+    /// under an inflation weight it draws the search towards states that face the goal's
+    /// heading everywhere on the map, which on large maps with cheap turns costs up to 30x more
+    /// expansions, and where turns are expensive (SBPL's cubicle: 20 s per 45 degrees) the
+    /// block abstraction already knows their cost (docs/results/lattice.md, 1b).
+    bool anchor_turn_term = false;
+    /// Whether a weight w (ARA*'s epsilon, A-MHA*'s w1) inflates the heuristics' heading-aware
+    /// terms too: the block abstraction, the kinematic table and the turning terms. Off (the
+    /// default): the keys are g + h + (w - 1) b, with b the heading-blind part of h (the larger
+    /// of the Euclidean and grid terms; an inadmissible heuristic's Dijkstra), so those terms
+    /// count once (SearchProblem::hasInflationBases: every bound holds). Inflated, they reward
+    /// turning early, by w times what the turn saves in h for once what it costs
+    /// (docs/results/lattice.md, 1.0). On: the paper's keys, g + w h.
+    bool inflate_heading_terms = false;
+  };
+  /// The per-goal heuristic grids kept between queries.
+  struct Cache {
+    int size = 2;  ///< goals whose grids are kept (each costs ~16 bytes per map cell)
+    /// A planner built from the previous one after a map change keeps that one's cached grids
+    /// and repairs them on the first query to their goal (HeuristicGridBuilder::repair: exact,
+    /// and far quicker than computing them again unless the change reroutes most of the map).
+    bool repair = true;
+  };
+
+  Robot robot;
+  Motion motion;
+  CostModel cost;
+  Heuristics heuristics;
+  Cache cache;
   /// Search from the goal back to the start (as SBPL does by default). The heuristics are
   /// then computed from the start, so the cache helps only repeated queries from one start.
   bool backward_search = false;
-  /// Goals whose heuristic grids are kept (each costs ~16 bytes per map cell).
-  int heuristic_cache_size = 2;
-  /// A planner built from the previous one after a map change keeps that one's cached grids
-  /// and repairs them on the first query to their goal (HeuristicGridBuilder::repair: exact,
-  /// and far quicker than computing them again unless the change reroutes most of the map).
-  bool repair_heuristics = true;
-  /// Generated primitives: the generator and the motion model (turn_in_place = false also keeps
-  /// kDifferential and kOmni from turning on the spot). allow_reverse adds backward motions,
-  /// costed reverse_multiplier times their forward twins; with a Nav2 file (.json, which has
-  /// forward motions only) it adds them too, as Smac's allow_reverse_expansion does.
-  PrimitiveGenerator primitive_generator = PrimitiveGenerator::kNearMinimal;
-  MotionModel motion_model = MotionModel::kDifferential;
-  double reverse_multiplier = 3.0;
 };
 
 }  // namespace lattice

@@ -24,7 +24,7 @@ struct LatticeAction {
   int start_heading = 0;
   int end_heading = 0;
   int primitive = 0;       ///< index into PrimitiveSet::primitives
-  Cost base_cost = 1;      ///< cost on free cells (see LatticeConfig::cost_penalty)
+  Cost base_cost = 1;      ///< cost on free cells (see LatticeConfig::CostModel::penalty)
   std::int64_t end_offset = 0;  ///< dy * width + dx
   int min_dx = 0, max_dx = 0, min_dy = 0, max_dy = 0;  ///< box of every cell it touches
   /// Largest distance (cells) from the start cell to a swept cell: if the start cell is
@@ -137,7 +137,7 @@ class LatticeGraph {
   double gridTurnUnitsPerRadian() const { return grid_turn_per_rad_; }
 
   /// The obstacle-free kinematic tables of this graph's actions (null when
-  /// LatticeConfig::kinematic_radius is 0 or the anchor is the Euclidean one): shared with every
+  /// LatticeConfig::Heuristics::kinematic_radius is 0 or the anchor is the Euclidean one): shared with every
   /// graph that has the same actions, whatever its map.
   const std::shared_ptr<KinematicTables>& kinematicTables() const { return kinematic_; }
 

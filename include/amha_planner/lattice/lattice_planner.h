@@ -146,7 +146,7 @@ class LatticePlanner {
   /// as the constructor above with previous.config(), built from `previous` by recomputing only
   /// what the change can reach (the robot's primitives and footprint sweeps are copied, the
   /// clearance and openings recomputed near `changed`). previous's cached heuristic grids are
-  /// kept and repaired on the first query to their goal (LatticeConfig::repair_heuristics).
+  /// kept and repaired on the first query to their goal (LatticeConfig::Cache::repair).
   LatticePlanner(const LatticePlanner& previous, std::shared_ptr<const GridMap> map,
                  const CellRect& changed);
   ~LatticePlanner();

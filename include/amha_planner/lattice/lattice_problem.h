@@ -44,7 +44,7 @@ class LatticeProblem final : public SearchProblem {
   void successors(StateId s, std::vector<Edge>& out) override;
   std::size_t numHeuristics() const override { return 1 + static_cast<std::size_t>(num_inadmissible_); }
   void heuristics(StateId s, HeuristicValue* h, std::size_t count) override;
-  /// Unless LatticeConfig::inflate_heading_terms (and only with a heading-aware term in the
+  /// Unless LatticeConfig::Heuristics::inflate_heading_terms (and only with a heading-aware term in the
   /// anchor): a weight inflates only the heuristics' heading-blind parts, the anchor's larger
   /// of its Euclidean and grid terms and each inadmissible heuristic's Dijkstra.
   bool hasInflationBases() const override { return bases_; }

@@ -145,7 +145,7 @@ PrimitiveSet readNav2Lattice(std::istream& in, const std::string& name, double m
 
 /// Writes `set` as a Nav2 lattice file that Nav2's reader and readNav2Lattice read. Backward
 /// motions are left out (Nav2 adds them itself with allow_reverse_expansion; so does
-/// LatticeConfig::allow_reverse with a .json file). Throws LatticeError (kPrimitives).
+/// LatticeConfig::Motion::allow_reverse with a .json file). Throws LatticeError (kPrimitives).
 void writeNav2LatticeFile(const std::string& path, const PrimitiveSet& set);
 void writeNav2Lattice(std::ostream& out, const PrimitiveSet& set);
 

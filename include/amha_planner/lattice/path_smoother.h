@@ -55,7 +55,7 @@ MotionKind motionKind(const MotionPrimitive& primitive);
 /// The motion model's minimum turning radius (metres): the tightest turn of its driving
 /// primitives, measured between consecutive intermediate poses as 1 / (2 sin(|dtheta| / 2) /
 /// |dp|), the radius of the circle through both (exact for samples of an arc). Generated
-/// primitives turn no tighter than LatticeConfig::turning_radius and usually wider (their arcs
+/// primitives turn no tighter than LatticeConfig::Motion::turning_radius and usually wider (their arcs
 /// must end on cell centres); an .mprim file's min_turning_radius_m is its authors' claim.
 /// Infinite if no driving primitive turns (then nothing is shortcut).
 double modelTurningRadius(const LatticeGraph& graph);
