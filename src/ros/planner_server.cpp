@@ -1,11 +1,10 @@
-// The planning server (see planner_server.h): threads, tf2, and the mapping between the
-// lattice planner's results and the interfaces' status codes.
+// The planning server (see planner_server.h): threads and tf2; the interfaces' responses are
+// response_conversion.h's.
 #include "amha_planner/ros/planner_server.h"
 
 #include <chrono>
 #include <cmath>
 #include <future>
-#include <sstream>
 #include <utility>
 
 #include <tf2/exceptions.h>
@@ -15,102 +14,18 @@
 #include "amha_planner/lattice/path_smoother.h"
 #include "amha_planner/ros/conversions.h"
 #include "amha_planner/ros/reconfigure.h"
+#include "amha_planner/ros/response_conversion.h"
 
 namespace amha_planner {
 
 namespace lat = amha::lattice;
 using Status = Plan::Response;
 
-// The action result repeats the service's codes; keep them identical.
-#define AMHA_SAME_CODE(c) \
-  static_assert(static_cast<unsigned>(Status::c) == static_cast<unsigned>(PlanAnytimeResult::c), \
-                "Plan.srv and PlanAnytime.action disagree on " #c)
-AMHA_SAME_CODE(SUCCESS);
-AMHA_SAME_CODE(CANCELLED);
-AMHA_SAME_CODE(INVALID_START);
-AMHA_SAME_CODE(INVALID_GOAL);
-AMHA_SAME_CODE(NO_PATH_FOUND);
-AMHA_SAME_CODE(TIME_EXHAUSTED);
-AMHA_SAME_CODE(MEMORY_EXHAUSTED);
-AMHA_SAME_CODE(TF_ERROR);
-AMHA_SAME_CODE(NO_MAP);
-AMHA_SAME_CODE(INVALID_REQUEST);
-AMHA_SAME_CODE(INTERNAL_ERROR);
-AMHA_SAME_CODE(OUT_OF_MAP);
-AMHA_SAME_CODE(BUSY);
-#undef AMHA_SAME_CODE
-
 namespace {
-
-const char* statusCodeName(std::uint32_t s) {
-  switch (s) {
-    case Status::SUCCESS: return "SUCCESS";
-    case Status::CANCELLED: return "CANCELLED";
-    case Status::INVALID_START: return "INVALID_START";
-    case Status::INVALID_GOAL: return "INVALID_GOAL";
-    case Status::NO_PATH_FOUND: return "NO_PATH_FOUND";
-    case Status::TIME_EXHAUSTED: return "TIME_EXHAUSTED";
-    case Status::MEMORY_EXHAUSTED: return "MEMORY_EXHAUSTED";
-    case Status::TF_ERROR: return "TF_ERROR";
-    case Status::NO_MAP: return "NO_MAP";
-    case Status::INVALID_REQUEST: return "INVALID_REQUEST";
-    case Status::INTERNAL_ERROR: return "INTERNAL_ERROR";
-    case Status::OUT_OF_MAP: return "OUT_OF_MAP";
-    case Status::BUSY: return "BUSY";
-  }
-  return "UNKNOWN";
-}
-
-std::uint32_t statusForQueryError(lat::QueryError e) {
-  switch (e) {
-    case lat::QueryError::kStartNotFinite:
-    case lat::QueryError::kStartInCollision: return Status::INVALID_START;
-    case lat::QueryError::kGoalNotFinite:
-    case lat::QueryError::kGoalInCollision: return Status::INVALID_GOAL;
-    case lat::QueryError::kGoalUnreachable: return Status::NO_PATH_FOUND;
-    case lat::QueryError::kStartOutOfMap:
-    case lat::QueryError::kGoalOutOfMap: return Status::OUT_OF_MAP;
-    case lat::QueryError::kNone: break;
-  }
-  return Status::INTERNAL_ERROR;
-}
 
 /// Blocks of this size or more are mapped alone (~release_freed_memory): a 4000 x 4000 map's
 /// arrays are tens of MB each, a request's small vectors far below.
 constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
-
-/// What a client is told when the request queue is full.
-std::string busyMessage(int max_queued) {
-  return "busy: one request is planning and " + std::to_string(max_queued) +
-         " are waiting (~max_queued_requests); try again later";
-}
-
-std::string fmt(double v, int precision = 3) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << std::fixed << v;
-  return s.str();
-}
-
-// Moves rather than copies: with every solution's path a result can be megabytes, and a
-// cancelled goal's result should leave at once.
-template <class Result>
-void moveResponse(Plan::Response&& in, Result* out) {
-  out->status = in.status;
-  out->message = std::move(in.message);
-  out->request_id = in.request_id;
-  out->path = std::move(in.path);
-  out->cost = in.cost;
-  out->bound = in.bound;
-  out->certified_bound = in.certified_bound;
-  out->planning_time = in.planning_time;
-  out->expansions = in.expansions;
-  out->solutions = std::move(in.solutions);
-  out->goal_substituted = in.goal_substituted;
-  out->planned_goal = std::move(in.planned_goal);
-  out->start_escaped = in.start_escaped;
-  out->escape_end = std::move(in.escape_end);
-}
 
 }  // namespace
 
@@ -580,13 +495,9 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
 
 Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
                                       const std::atomic<bool>& cancel, const SolutionSink& sink) {
-  Plan::Response res;
-  res.request_id = id;
-  res.status = Status::INTERNAL_ERROR;
   const std::string& frame = startup_.global_frame;
   const ros::Time stamp = ros::Time::now();
-  res.path.header.frame_id = frame;
-  res.path.header.stamp = stamp;
+  Plan::Response res = responseWithoutPath(id, Status::INTERNAL_ERROR, "", frame, stamp);
   try {
     if (shutting_down_) {
       res.status = Status::CANCELLED;
@@ -650,18 +561,14 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
         return res;
       case MapWait::kTimeUp:
         res.status = Status::TIME_EXHAUSTED;
-        res.message = "time budget of " + fmt(budget, 2) +
-                      " s used up while the newest map's planner was being built";
+        res.message = budgetUsedUp(budget) + " while the newest map's planner was being built";
         return res;
     }
     const auto planner = currentPlanner();
     if (!planner) {
       std::lock_guard<std::mutex> lock(planner_mutex_);
       res.status = Status::NO_MAP;
-      res.message = refused_map_reason_.empty()
-                        ? "no valid map received on " + map_sub_.getTopic() + " yet"
-                        : "no usable map on " + map_sub_.getTopic() + " yet: the last one was refused: " +
-                              refused_map_reason_;
+      res.message = noMapMessage(map_sub_.getTopic(), refused_map_reason_);
       return res;
     }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
@@ -727,96 +634,11 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       res.solutions.push_back(std::move(m));
     };
     const lat::PlanResult result = planner->plan(s, g, start_options, goal_options, config, limits, on_solution);
-    res.planning_time =
-        result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds + result.escape_seconds;
     if (result.error == lat::QueryError::kNone) {
       ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
                 result.heuristic_seconds);
     }
-    res.expansions = result.search.expansions;
-
-    if (result.error != lat::QueryError::kNone) {
-      res.status = statusForQueryError(result.error);
-      res.message = result.message;
-      return res;
-    }
-    res.goal_substituted = result.goal_substituted;
-    if (result.planned_goal) res.planned_goal = poseStampedFromPose2D(*result.planned_goal, frame, stamp);
-    res.start_escaped = result.start_escaped;
-    if (result.start_escaped && !result.solutions.empty()) {
-      const lat::LatticeSolution& best = result.solutions.back();
-      res.escape_end = poseStampedFromPose2D(best.poses[best.escape_poses - 1], frame, stamp);
-    }
-    // Told after the outcome: "...; start (..) is in collision; the path leaves it by ...",
-    // "...; goal (..) is in collision; planning to ... instead".
-    std::string substitution = result.start_escaped ? "; " + result.escape_message : "";
-    if (result.goal_substituted) substitution += "; " + result.message;
-    const auto status = result.search.status;
-    if (!res.solutions.empty()) {
-      const PlanSolution& best = res.solutions.back();
-      res.path = pathFromPoses(best_poses, frame, stamp);
-      res.cost = best.cost;
-      res.bound = best.bound;
-      res.certified_bound = best.certified_bound;
-      const std::string summary = std::to_string(res.solutions.size()) +
-                                  " solution(s), best cost " + fmt(best.cost) + " m, bound " +
-                                  fmt(best.bound, 2) + ", certified " +
-                                  fmt(best.certified_bound, 2) +
-                                  (best.smoothed ? " (smoothed; lattice path " + fmt(best.lattice_cost) + " m)" : "");
-      res.status = Status::SUCCESS;
-      switch (status) {
-        case amha::SearchStatus::kProvenOptimal:
-          res.message = "optimal path: " + summary;
-          break;
-        case amha::SearchStatus::kBoundReached:
-          res.message = "path within the requested bound: " + summary;
-          break;
-        case amha::SearchStatus::kTimeLimit:
-          res.message = "time budget of " + fmt(budget, 2) +
-                        " s used up; returning the best path so far: " + summary;
-          break;
-        case amha::SearchStatus::kMemoryLimit:
-        case amha::SearchStatus::kExpansionLimit:
-          res.message = std::string("search stopped (") + amha::statusName(status) +
-                        "); returning the best path so far: " + summary;
-          break;
-        case amha::SearchStatus::kCancelled:
-          res.status = Status::CANCELLED;
-          res.message = "cancelled; returning the best path so far: " + summary;
-          break;
-        case amha::SearchStatus::kNoSolution:
-          res.status = Status::INTERNAL_ERROR;
-          res.message = "the search reported no solution after finding one: " + summary;
-          break;
-      }
-      res.message += substitution;
-      return res;
-    }
-    switch (status) {
-      case amha::SearchStatus::kNoSolution:
-        res.status = Status::NO_PATH_FOUND;
-        res.message = "no path: the goal cannot be reached from the start on this map";
-        break;
-      case amha::SearchStatus::kTimeLimit:
-        res.status = Status::TIME_EXHAUSTED;
-        res.message = "time budget of " + fmt(budget, 2) + " s used up before any path was found";
-        break;
-      case amha::SearchStatus::kMemoryLimit:
-        res.status = Status::MEMORY_EXHAUSTED;
-        res.message = "memory cap of " + fmt(params->max_memory_mb, 0) +
-                      " MB (~max_memory_mb) reached before any path was found";
-        break;
-      case amha::SearchStatus::kCancelled:
-        res.status = Status::CANCELLED;
-        res.message = "cancelled before any path was found";
-        break;
-      default:
-        res.status = Status::INTERNAL_ERROR;
-        res.message = std::string("the search ended (") + amha::statusName(status) +
-                      ") without a solution";
-        break;
-    }
-    res.message += substitution;
+    completeResponse(result, best_poses, ResponseContext{frame, stamp, budget, params->max_memory_mb}, &res);
   } catch (const std::exception& e) {
     res.status = Status::INTERNAL_ERROR;
     res.message = std::string("planner failure: ") + e.what();
@@ -836,12 +658,7 @@ Plan::Response PlannerServer::runBlocking(const Request& request) {
   });
   if (!queued) {
     releaseCancelFlag(flag);
-    Plan::Response busy;
-    busy.request_id = id;
-    busy.status = Status::BUSY;
-    busy.message = busyMessage(startup_.max_queued_requests);
-    busy.path.header.frame_id = startup_.global_frame;
-    return busy;
+    return busyResponse(id, startup_.max_queued_requests, startup_.global_frame);
   }
   return response.get();
 }
@@ -883,9 +700,7 @@ bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
   const Plan::Response out = runBlocking(r);
   logOutcome("make_plan", out);
   // Like move_base's make_plan: an empty plan means failure (the log says why).
-  if (out.status == Status::SUCCESS) res.plan = out.path;
-  res.plan.header.frame_id = startup_.global_frame;
-  res.plan.header.stamp = out.path.header.stamp;
+  res = makePlanResponse(out, startup_.global_frame);
   return true;
 }
 
@@ -930,11 +745,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
   }, &job->ticket);
   if (!queued) {
     releaseCancelFlag(job->cancel);
-    PlanAnytimeResult busy;
-    busy.request_id = id;
-    busy.status = Status::BUSY;
-    busy.message = busyMessage(startup_.max_queued_requests);
-    busy.path.header.frame_id = startup_.global_frame;
+    const PlanAnytimeResult busy = actionResult(busyResponse(id, startup_.max_queued_requests, startup_.global_frame));
     ROS_WARN("amha_planner: plan_anytime request %u: BUSY", id);
     goal.setRejected(busy, busy.message);
     return;
@@ -946,8 +757,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
 void PlannerServer::finishGoal(GoalHandle& goal, Plan::Response&& res) {
   const std::uint32_t status = res.status;
   const std::string message = res.message;
-  PlanAnytimeResult result;
-  moveResponse(std::move(res), &result);
+  const PlanAnytimeResult result = actionResult(std::move(res));
   const auto state = goal.getGoalStatus().status;
   const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
                                 state == actionlib_msgs::GoalStatus::RECALLING;
@@ -977,12 +787,9 @@ void PlannerServer::onCancel(GoalHandle goal) {
     // Its place in the queue goes to the next request at once (else the job, when the worker
     // takes it, finds it done and releases the flag itself).
     if (queue_->removeWaiting(job->ticket)) releaseCancelFlag(job->cancel);
-    Plan::Response res;
-    res.request_id = job->request_id;
-    res.status = Status::CANCELLED;
-    res.message = "cancelled while waiting in the queue: no planning was done";
-    res.path.header.frame_id = startup_.global_frame;
-    res.path.header.stamp = ros::Time::now();
+    Plan::Response res = responseWithoutPath(job->request_id, Status::CANCELLED,
+                                             "cancelled while waiting in the queue: no planning was done",
+                                             startup_.global_frame, ros::Time::now());
     logOutcome("plan_anytime", res);
     finishGoal(goal, std::move(res));
     goal_jobs_.erase(it);
