@@ -3,7 +3,6 @@
 #include "amha_planner/ros/planner_server.h"
 
 #include <chrono>
-#include <cmath>
 #include <future>
 #include <utility>
 
@@ -493,7 +492,7 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
   return true;
 }
 
-Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
+Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
                                       const std::atomic<bool>& cancel, const SolutionSink& sink) {
   const std::string& frame = startup_.global_frame;
   const ros::Time stamp = ros::Time::now();
@@ -512,29 +511,14 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     // The parameters in force when the request starts planning hold for the whole of it,
     // whatever changes meanwhile (its budget, transforms and search).
     const std::shared_ptr<const PlannerParams> params = this->params();
-    amha::PlannerConfig config;
+    PlanQuery query;
     std::string error;
-    if (!searchConfigFor(*params, r.algorithm, r.w1, r.w2, &config, &error)) {
+    if (!queryFor(r, *params, &query, &error)) {
       res.status = Status::INVALID_REQUEST;
       res.message = error;
       return res;
     }
-    const double budget = r.time_budget == 0.0 ? params->default_time_budget : r.time_budget;
-    if (!std::isfinite(budget) || budget < 0.0) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = "time_budget must be finite and >= 0 (0: the default)";
-      return res;
-    }
-    if (!std::isfinite(r.goal_tolerance) || r.goal_tolerance < 0.0) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)";
-      return res;
-    }
-    if (!std::isfinite(r.start_tolerance) || r.start_tolerance < 0.0) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)";
-      return res;
-    }
+    const double budget = query.time_budget;
     // The budget counts from here: the transforms and the wait for the newest map's planner use
     // it too. Poses come first: their errors do not depend on the map.
     const auto started = std::chrono::steady_clock::now();
@@ -578,13 +562,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
     limits.time_limit_s = std::max(0.0, budget - waited);
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params->max_memory_mb * 1024.0 * 1024.0);
-
-    lat::GoalOptions goal_options;
-    goal_options.tolerance = r.goal_tolerance;
-    goal_options.any_heading = r.ignore_goal_heading || params->ignore_goal_heading;
-    lat::StartOptions start_options;
-    start_options.tolerance = r.start_tolerance > 0.0 ? r.start_tolerance : params->start_tolerance;
-    start_options.penalty = params->start_escape_penalty;
+    const lat::GoalOptions& goal_options = query.goal_options;
 
     // Each improvement is published as it is found (~solutions, ~plan, ~footprints), smoothed
     // with ~smooth_path.
@@ -633,7 +611,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
       if (same_lattice_path) m.lattice_path.poses.clear();
       res.solutions.push_back(std::move(m));
     };
-    const lat::PlanResult result = planner->plan(s, g, start_options, goal_options, config, limits, on_solution);
+    const lat::PlanResult result = planner->plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
     if (result.error == lat::QueryError::kNone) {
       ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
                 result.heuristic_seconds);
@@ -646,7 +624,7 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
   return res;
 }
 
-Plan::Response PlannerServer::runBlocking(const Request& request) {
+Plan::Response PlannerServer::runBlocking(const PlannerRequest& request) {
   const std::uint32_t id = next_request_id_++;
   auto done = std::make_shared<std::promise<Plan::Response>>();
   std::future<Plan::Response> response = done->get_future();
@@ -676,28 +654,14 @@ void logOutcome(const char* interface, const Plan::Response& res) {
 }  // namespace
 
 bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
-  Request r;
-  r.start = req.start;
-  r.goal = req.goal;
-  r.time_budget = req.time_budget;
-  r.algorithm = req.algorithm;
-  r.w1 = req.w1;
-  r.w2 = req.w2;
-  r.goal_tolerance = req.goal_tolerance;
-  r.ignore_goal_heading = req.ignore_goal_heading;
-  r.start_tolerance = req.start_tolerance;
-  res = runBlocking(r);
+  res = runBlocking(requestFrom(req));
   logOutcome("plan", res);
   return true;
 }
 
 bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
                                nav_msgs::GetPlan::Response& res) {
-  Request r;
-  r.start = req.start;
-  r.goal = req.goal;
-  r.goal_tolerance = req.tolerance;  // as move_base's: used when the goal is obstructed
-  const Plan::Response out = runBlocking(r);
+  const Plan::Response out = runBlocking(requestFrom(req));
   logOutcome("make_plan", out);
   // Like move_base's make_plan: an empty plan means failure (the log says why).
   res = makePlanResponse(out, startup_.global_frame);
@@ -705,17 +669,7 @@ bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
 }
 
 void PlannerServer::onGoal(GoalHandle goal) {
-  const auto g = goal.getGoal();
-  Request r;
-  r.start = g->start;
-  r.goal = g->goal;
-  r.time_budget = g->time_budget;
-  r.algorithm = g->algorithm;
-  r.w1 = g->w1;
-  r.w2 = g->w2;
-  r.goal_tolerance = g->goal_tolerance;
-  r.ignore_goal_heading = g->ignore_goal_heading;
-  r.start_tolerance = g->start_tolerance;
+  const PlannerRequest r = requestFrom(*goal.getGoal());
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
   auto job = std::make_shared<GoalJob>();

@@ -48,6 +48,7 @@
 #include "amha_planner/ros/plan_anytime_server.h"
 #include "amha_planner/ros/plan_queue.h"
 #include "amha_planner/ros/planner_params.h"
+#include "amha_planner/ros/request_conversion.h"
 
 namespace amha_planner {
 
@@ -65,17 +66,6 @@ class PlannerServer {
   using GoalHandle = ActionServer::GoalHandle;
   /// Called with each improved solution's message while a request runs.
   using SolutionSink = std::function<void(const PlanSolution&)>;
-
-  /// One request, whichever interface it came through.
-  struct Request {
-    geometry_msgs::PoseStamped start, goal;
-    double time_budget = 0.0;
-    std::string algorithm;
-    double w1 = 0.0, w2 = 0.0;
-    double goal_tolerance = 0.0;  ///< metres (nav_msgs/GetPlan's tolerance)
-    bool ignore_goal_heading = false;
-    double start_tolerance = 0.0;  ///< metres; 0: ~start_tolerance
-  };
 
   void onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg);
   /// A map whose frame is not the global frame, with its origin transformed into the global
@@ -126,14 +116,14 @@ class PlannerServer {
   void finishGoal(GoalHandle& goal, Plan::Response&& res);
 
   /// Queues `request` and waits for its response (BUSY when the queue is full).
-  Plan::Response runBlocking(const Request& request);
+  Plan::Response runBlocking(const PlannerRequest& request);
   /// A dynamic_reconfigure change: checked, then in force for the requests that start planning
   /// after it, rebuilding the planner if it must; refused (config reset, error logged) if bad.
   void onReconfigure(AmhaPlannerConfig& config, std::uint32_t level);
   /// The parameters in force (a snapshot: a reconfiguration replaces them whole).
   std::shared_ptr<const PlannerParams> params() const;
   /// Plans one request on the worker thread; `cancel` stops it.
-  Plan::Response execute(const Request& request, std::uint32_t id,
+  Plan::Response execute(const PlannerRequest& request, std::uint32_t id,
                          const std::atomic<bool>& cancel, const SolutionSink& sink);
   /// Resolves a request pose into the global frame (tf2); false with status and message set.
   /// Throws TransformCancelled if `cancel` is set while it waits for a transform.
