@@ -9,6 +9,7 @@ add_library(amha_ros
   src/ros/planner_params.cpp
   src/ros/plan_queue.cpp
   src/ros/latest_job_runner.cpp
+  src/ros/map_tracker.cpp
   src/ros/freed_memory.cpp
   src/ros/plan_anytime_server.cpp
   src/ros/planner_server.cpp
