@@ -222,41 +222,31 @@ Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
   const std::string& frame = startup_.global_frame;
   const ros::Time stamp = ros::Time::now();
   Plan::Response res = responseWithoutPath(id, Status::INTERNAL_ERROR, "", frame, stamp);
+  const auto answer = [&res](std::uint32_t status, std::string message) {  // without planning
+    res.status = status;
+    res.message = std::move(message);
+    return std::move(res);
+  };
   try {
-    if (shutting_down_) {
-      res.status = Status::CANCELLED;
-      res.message = "the planner is shutting down";
-      return res;
-    }
-    if (cancel) {
-      res.status = Status::CANCELLED;
-      res.message = "cancelled before planning started";
-      return res;
-    }
+    if (shutting_down_) return answer(Status::CANCELLED, "the planner is shutting down");
+    if (cancel) return answer(Status::CANCELLED, "cancelled before planning started");
     // The parameters in force when the request starts planning hold for the whole of it,
     // whatever changes meanwhile (its budget, transforms and search).
     const std::shared_ptr<const PlannerParams> params = this->params();
     PlanQuery query;
     std::string error;
-    if (!queryFor(r, *params, &query, &error)) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = error;
-      return res;
-    }
-    const double budget = query.time_budget;
+    if (!queryFor(r, *params, &query, &error)) return answer(Status::INVALID_REQUEST, error);
     // The budget counts from here: the transforms and the wait for the newest map's planner use
     // it too. Poses come first: their errors do not depend on the map.
     const auto started = std::chrono::steady_clock::now();
     const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                        std::chrono::duration<double>(std::min(budget, 1e9)));
+                                        std::chrono::duration<double>(std::min(query.time_budget, 1e9)));
     geometry_msgs::PoseStamped start, goal;
     try {
       if (!toGlobalFrame(r.start, true, params->tf_timeout, &start, &res, cancel)) return res;
       if (!toGlobalFrame(r.goal, false, params->tf_timeout, &goal, &res, cancel)) return res;
     } catch (const TransformCancelled&) {
-      res.status = Status::CANCELLED;
-      res.message = "cancelled while waiting for a transform";
-      return res;
+      return answer(Status::CANCELLED, "cancelled while waiting for a transform");
     }
     // Every map and update received before this request is in the planner it gets (at most
     // the build under way and one more); it keeps that planner even if a new map arrives.
@@ -264,88 +254,94 @@ Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
       case MapTracker::Wait::kReady:
         break;
       case MapTracker::Wait::kCancelled:
-        res.status = Status::CANCELLED;
-        res.message = shutting_down_ ? "the planner is shutting down"
-                                     : "cancelled while the newest map's planner was being built";
-        return res;
+        return answer(Status::CANCELLED, shutting_down_ ? "the planner is shutting down"
+                                                        : "cancelled while the newest map's planner was being built");
       case MapTracker::Wait::kTimeUp:
-        res.status = Status::TIME_EXHAUSTED;
-        res.message = budgetUsedUp(budget) + " while the newest map's planner was being built";
-        return res;
+        return answer(Status::TIME_EXHAUSTED,
+                      budgetUsedUp(query.time_budget) + " while the newest map's planner was being built");
     }
     const auto planner = map_tracker_->currentPlanner();
     if (!planner) {
-      res.status = Status::NO_MAP;
-      res.message = noMapMessage(map_tracker_->mapTopic(), map_tracker_->refusedMapReason());
-      return res;
+      return answer(Status::NO_MAP, noMapMessage(map_tracker_->mapTopic(), map_tracker_->refusedMapReason()));
     }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    limits.time_limit_s = std::max(0.0, budget - waited);
+    limits.time_limit_s = std::max(0.0, query.time_budget - waited);
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params->max_memory_mb * 1024.0 * 1024.0);
-    const lat::GoalOptions& goal_options = query.goal_options;
-
-    // Each improvement is published as it is found (~solutions, ~plan, ~footprints), smoothed
-    // with ~smooth_path.
-    std::unique_ptr<lat::PathSmoother> smoother;
-    std::unique_ptr<lat::SmoothedStream> stream;
-    if (params->smooth_path) {
-      smoother = std::make_unique<lat::PathSmoother>(planner->graph());
-      stream = std::make_unique<lat::SmoothedStream>(*smoother);
-    }
-    std::vector<amha::StateId> previous_ids;  // state ids identify a lattice path exactly
-    std::vector<lat::Pose2D> best_poses;      // of the path published last
-    const auto on_solution = [&](const lat::LatticeSolution& solution) {
-      const bool same_lattice_path = !res.solutions.empty() && previous_ids == solution.search.path;
-      previous_ids = solution.search.path;
-      PlanSolution m;
-      const lat::LatticeSolution* shown = &solution;
-      bool smoothed = false;
-      if (stream) {
-        try {
-          const lat::SmoothedStream::Step& step = stream->add(solution);
-          m = smoothedSolutionMsg(step.published, solution, id, frame, stamp);
-          m.same_path_as_previous = !res.solutions.empty() && step.same_as_previous;
-          shown = &step.published;
-          smoothed = true;
-        } catch (const std::exception& e) {
-          ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id, e.what());
-        }
-      }
-      if (!smoothed) {
-        m = planSolutionMsg(solution, id, frame, stamp);
-        m.same_path_as_previous = same_lattice_path;
-      }
-      best_poses = shown->poses;
-      solutions_pub_.publish(m);
-      if (!m.same_path_as_previous) {
-        path_pub_.publish(m.path);
-        // With a goal tolerance or any goal heading the path may end elsewhere than at the
-        // goal pose: mark where it really ends.
-        const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
-        const lat::Pose2D& goal_mark = free_end ? shown->poses.back() : g;
-        markers_pub_.publish(footprintMarkers(*planner, shown->poses, s, goal_mark, frame, stamp,
-                                              params->marker_spacing));
-      }
-      if (sink) sink(m);
-      if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
-      if (same_lattice_path) m.lattice_path.poses.clear();
-      res.solutions.push_back(std::move(m));
-    };
-    const lat::PlanResult result = planner->plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
-    if (result.error == lat::QueryError::kNone) {
-      ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
-                result.heuristic_seconds);
-    }
-    completeResponse(result, best_poses, ResponseContext{frame, stamp, budget, params->max_memory_mb}, &res);
+    std::vector<lat::Pose2D> best_poses;  // of the path published last
+    const lat::PlanResult result = search(*planner, *params, query, s, g, limits, sink, &res, &best_poses);
+    const ResponseContext context{frame, stamp, query.time_budget, params->max_memory_mb};
+    completeResponse(result, best_poses, context, &res);
   } catch (const std::exception& e) {
     res.status = Status::INTERNAL_ERROR;
     res.message = std::string("planner failure: ") + e.what();
   }
   return res;
+}
+
+lat::PlanResult PlannerServer::search(lat::LatticePlanner& planner, const PlannerParams& params,
+                                      const PlanQuery& query, const lat::Pose2D& s, const lat::Pose2D& g,
+                                      const amha::SearchLimits& limits, const SolutionSink& sink,
+                                      Plan::Response* res, std::vector<lat::Pose2D>* best_poses) {
+  const std::uint32_t id = res->request_id;
+  const std::string& frame = startup_.global_frame;
+  const ros::Time stamp = res->path.header.stamp;
+  const lat::GoalOptions& goal_options = query.goal_options;
+  // Each improvement is published as it is found (~solutions, ~plan, ~footprints), smoothed
+  // with ~smooth_path.
+  std::unique_ptr<lat::PathSmoother> smoother;
+  std::unique_ptr<lat::SmoothedStream> stream;
+  if (params.smooth_path) {
+    smoother = std::make_unique<lat::PathSmoother>(planner.graph());
+    stream = std::make_unique<lat::SmoothedStream>(*smoother);
+  }
+  std::vector<amha::StateId> previous_ids;  // state ids identify a lattice path exactly
+  const auto on_solution = [&](const lat::LatticeSolution& solution) {
+    const bool same_lattice_path = !res->solutions.empty() && previous_ids == solution.search.path;
+    previous_ids = solution.search.path;
+    PlanSolution m;
+    const lat::LatticeSolution* shown = &solution;
+    bool smoothed = false;
+    if (stream) {
+      try {
+        const lat::SmoothedStream::Step& step = stream->add(solution);
+        m = smoothedSolutionMsg(step.published, solution, id, frame, stamp);
+        m.same_path_as_previous = !res->solutions.empty() && step.same_as_previous;
+        shown = &step.published;
+        smoothed = true;
+      } catch (const std::exception& e) {
+        ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id, e.what());
+      }
+    }
+    if (!smoothed) {
+      m = planSolutionMsg(solution, id, frame, stamp);
+      m.same_path_as_previous = same_lattice_path;
+    }
+    *best_poses = shown->poses;
+    solutions_pub_.publish(m);
+    if (!m.same_path_as_previous) {
+      path_pub_.publish(m.path);
+      // With a goal tolerance or any goal heading the path may end elsewhere than at the
+      // goal pose: mark where it really ends.
+      const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
+      const lat::Pose2D& goal_mark = free_end ? shown->poses.back() : g;
+      markers_pub_.publish(footprintMarkers(planner, shown->poses, s, goal_mark, frame, stamp,
+                                            params.marker_spacing));
+    }
+    if (sink) sink(m);
+    if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
+    if (same_lattice_path) m.lattice_path.poses.clear();
+    res->solutions.push_back(std::move(m));
+  };
+  lat::PlanResult result = planner.plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
+  if (result.error == lat::QueryError::kNone) {
+    ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
+              result.heuristic_seconds);
+  }
+  return result;
 }
 
 Plan::Response PlannerServer::runBlocking(const PlannerRequest& request) {

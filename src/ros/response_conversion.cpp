@@ -74,7 +74,8 @@ Outcome searchOutcome(amha::SearchStatus status, const std::string* best, const 
       if (best) return {Status::INTERNAL_ERROR, "the search reported no solution after finding one: " + *best};
       return {Status::NO_PATH_FOUND, "no path: the goal cannot be reached from the start on this map"};
   }
-  return {Status::INTERNAL_ERROR, std::string("the search ended (") + amha::statusName(status) + ") without a solution"};
+  return {Status::INTERNAL_ERROR,
+          std::string("the search ended (") + amha::statusName(status) + ") without a solution"};
 }
 
 /// "3 solution(s), best cost 12.345 m, bound 1.50, certified 1.20" (and the lattice path's cost

@@ -116,7 +116,8 @@ TEST(PlanResponse, EverySearchStatusWithoutASolutionGivesItsCodeAndMessage) {
     std::string message;
   };
   const std::vector<Case> cases = {
-      {SearchStatus::kNoSolution, Status::NO_PATH_FOUND, "no path: the goal cannot be reached from the start on this map"},
+      {SearchStatus::kNoSolution, Status::NO_PATH_FOUND,
+       "no path: the goal cannot be reached from the start on this map"},
       {SearchStatus::kTimeLimit, Status::TIME_EXHAUSTED, "time budget of 2.50 s used up before any path was found"},
       {SearchStatus::kMemoryLimit, Status::MEMORY_EXHAUSTED,
        "memory cap of 1024 MB (~max_memory_mb) reached before any path was found"},
@@ -156,7 +157,8 @@ TEST(PlanResponse, EverySearchStatusAfterASolutionGivesItsCodeAndMessage) {
       {SearchStatus::kMemoryLimit, Status::SUCCESS, "search stopped (memory_limit)" + so_far},
       {SearchStatus::kExpansionLimit, Status::SUCCESS, "search stopped (expansion_limit)" + so_far},
       {SearchStatus::kCancelled, Status::CANCELLED, "cancelled" + so_far},
-      {SearchStatus::kNoSolution, Status::INTERNAL_ERROR, "the search reported no solution after finding one: " + summary},
+      {SearchStatus::kNoSolution, Status::INTERNAL_ERROR,
+       "the search reported no solution after finding one: " + summary},
   };
   for (const Case& c : cases) {
     const Plan::Response res = complete(searchEnded(c.status, 2), 2);

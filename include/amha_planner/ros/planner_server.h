@@ -22,6 +22,7 @@
 #include <mutex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
@@ -77,6 +78,16 @@ class PlannerServer {
   /// Plans one request on the worker thread; `cancel` stops it.
   Plan::Response execute(const PlannerRequest& request, std::uint32_t id,
                          const std::atomic<bool>& cancel, const SolutionSink& sink);
+  /// execute()'s search: plans `query` from `start` to `goal` on `planner` within `limits`,
+  /// publishing each improved solution as it is found (~solutions, ~plan, ~footprints and
+  /// `sink`), smoothed with ~smooth_path, and adding its message to res->solutions (res holds
+  /// the request's id and its path's stamp); *best_poses receives the poses of the path
+  /// published last.
+  amha::lattice::PlanResult search(amha::lattice::LatticePlanner& planner, const PlannerParams& params,
+                                   const PlanQuery& query, const amha::lattice::Pose2D& start,
+                                   const amha::lattice::Pose2D& goal, const amha::SearchLimits& limits,
+                                   const SolutionSink& sink, Plan::Response* res,
+                                   std::vector<amha::lattice::Pose2D>* best_poses);
   /// Resolves a request pose into the global frame (tf2); false with status and message set.
   /// Throws TransformCancelled if `cancel` is set while it waits for a transform.
   bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
