@@ -52,16 +52,6 @@ std::shared_ptr<lat::LatticePlanner> MapTracker::currentPlanner() const {
   return planner_;
 }
 
-std::string MapTracker::refusedMapReason() const {
-  std::lock_guard<std::mutex> lock(planner_mutex_);
-  return refused_map_reason_;
-}
-
-void MapTracker::wakeWaiters() {
-  std::lock_guard<std::mutex> wake(planner_mutex_);
-  planner_built_.notify_all();
-}
-
 bool MapTracker::setParams(std::shared_ptr<const PlannerParams> next, bool rebuild) {
   bool have_map = false;
   {
@@ -281,6 +271,11 @@ bool MapTracker::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, st
   return have_planner;
 }
 
+std::string MapTracker::refusedMapReason() const {
+  std::lock_guard<std::mutex> lock(planner_mutex_);
+  return refused_map_reason_;
+}
+
 void MapTracker::logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const {
   // A reconfiguration of the robot or the map conversion rebuilds the current map in full.
   std::string what = in.full_map ? "map" : in.reconfigured ? "map (new parameters)" : "";
@@ -324,6 +319,11 @@ MapTracker::Wait MapTracker::waitForCurrentPlanner(const std::atomic<bool>& canc
     planner_built_.wait_until(lock, std::min(deadline, poll));
   }
   return Wait::kReady;
+}
+
+void MapTracker::wakeWaiters() {
+  std::lock_guard<std::mutex> wake(planner_mutex_);
+  planner_built_.notify_all();
 }
 
 }  // namespace amha_planner

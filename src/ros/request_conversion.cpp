@@ -7,20 +7,12 @@ namespace amha_planner {
 
 namespace {
 
-/// Plan.srv's request and PlanAnytime.action's goal have the same fields.
+/// Plan.srv's request and PlanAnytime.action's goal have the same fields (here in
+/// PlannerRequest's order; PlannerRequest.* in request_conversion_test checks each).
 template <class Message>
 PlannerRequest requestFromPlanFields(const Message& m) {
-  PlannerRequest r;
-  r.start = m.start;
-  r.goal = m.goal;
-  r.time_budget = m.time_budget;
-  r.algorithm = m.algorithm;
-  r.w1 = m.w1;
-  r.w2 = m.w2;
-  r.goal_tolerance = m.goal_tolerance;
-  r.ignore_goal_heading = m.ignore_goal_heading;
-  r.start_tolerance = m.start_tolerance;
-  return r;
+  return PlannerRequest{m.start, m.goal, m.time_budget, m.algorithm, m.w1, m.w2,
+                        m.goal_tolerance, m.ignore_goal_heading != 0, m.start_tolerance};
 }
 
 }  // namespace

@@ -87,6 +87,26 @@ std::string solutionsSummary(const std::vector<PlanSolution>& solutions) {
          (best.smoothed ? " (smoothed; lattice path " + fmt(best.lattice_cost) + " m)" : "");
 }
 
+// Moves rather than copies: with every solution's path a result can be megabytes, and a
+// cancelled goal's result should leave at once.
+template <class Result>
+void moveResponse(Plan::Response&& in, Result* out) {
+  out->status = in.status;
+  out->message = std::move(in.message);
+  out->request_id = in.request_id;
+  out->path = std::move(in.path);
+  out->cost = in.cost;
+  out->bound = in.bound;
+  out->certified_bound = in.certified_bound;
+  out->planning_time = in.planning_time;
+  out->expansions = in.expansions;
+  out->solutions = std::move(in.solutions);
+  out->goal_substituted = in.goal_substituted;
+  out->planned_goal = std::move(in.planned_goal);
+  out->start_escaped = in.start_escaped;
+  out->escape_end = std::move(in.escape_end);
+}
+
 }  // namespace
 
 const char* statusCodeName(std::uint32_t s) {
@@ -187,20 +207,7 @@ void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose
 
 PlanAnytimeResult actionResult(Plan::Response&& in) {
   PlanAnytimeResult out;
-  out.status = in.status;
-  out.message = std::move(in.message);
-  out.request_id = in.request_id;
-  out.path = std::move(in.path);
-  out.cost = in.cost;
-  out.bound = in.bound;
-  out.certified_bound = in.certified_bound;
-  out.planning_time = in.planning_time;
-  out.expansions = in.expansions;
-  out.solutions = std::move(in.solutions);
-  out.goal_substituted = in.goal_substituted;
-  out.planned_goal = std::move(in.planned_goal);
-  out.start_escaped = in.start_escaped;
-  out.escape_end = std::move(in.escape_end);
+  moveResponse(std::move(in), &out);
   return out;
 }
 

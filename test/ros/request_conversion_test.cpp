@@ -2,8 +2,12 @@
 // without a ROS master.
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <limits>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "amha_planner/ros/request_conversion.h"
 
@@ -27,23 +31,18 @@ Message filledIn() {
   return m;
 }
 
-template <class Message>
-void expectEveryField(const Message& m) {
-  const PlannerRequest r = requestFrom(m);
-  EXPECT_EQ(r.start, m.start);
-  EXPECT_EQ(r.goal, m.goal);
-  EXPECT_DOUBLE_EQ(r.time_budget, 3.0);
-  EXPECT_EQ(r.algorithm, "ara");
-  EXPECT_DOUBLE_EQ(r.w1, 4.0);
-  EXPECT_DOUBLE_EQ(r.w2, 2.0);
-  EXPECT_DOUBLE_EQ(r.goal_tolerance, 0.3);
-  EXPECT_TRUE(r.ignore_goal_heading);
-  EXPECT_DOUBLE_EQ(r.start_tolerance, 0.2);
+/// Every field of a request, by name (printed when a comparison fails).
+auto fields(const PlannerRequest& r) {
+  return std::tie(r.start, r.goal, r.time_budget, r.algorithm, r.w1, r.w2, r.goal_tolerance, r.ignore_goal_heading,
+                  r.start_tolerance);
 }
 
 TEST(PlannerRequest, ThePlanServiceAndTheActionGoalGiveEveryField) {
-  expectEveryField(filledIn<Plan::Request>());
-  expectEveryField(filledIn<PlanAnytimeGoal>());
+  const PlannerRequest expected = filledIn<PlannerRequest>();  // a value of its own in each field
+  const PlannerRequest from_plan = requestFrom(filledIn<Plan::Request>());
+  const PlannerRequest from_goal = requestFrom(filledIn<PlanAnytimeGoal>());
+  EXPECT_EQ(fields(from_plan), fields(expected));
+  EXPECT_EQ(fields(from_goal), fields(expected));
 }
 
 TEST(PlannerRequest, MakePlanGivesItsPosesAndItsToleranceAsTheGoalTolerance) {
@@ -52,17 +51,12 @@ TEST(PlannerRequest, MakePlanGivesItsPosesAndItsToleranceAsTheGoalTolerance) {
   m.start.pose.position.x = 1.5;
   m.goal.pose.position.y = -2.5;
   m.tolerance = 0.4f;
+  PlannerRequest expected;  // the rest as configured
+  expected.start = m.start;
+  expected.goal = m.goal;
+  expected.goal_tolerance = m.tolerance;
   const PlannerRequest r = requestFrom(m);
-  EXPECT_EQ(r.start, m.start);
-  EXPECT_EQ(r.goal, m.goal);
-  EXPECT_DOUBLE_EQ(r.goal_tolerance, 0.4f);
-  const PlannerRequest configured;  // the rest as configured
-  EXPECT_EQ(r.time_budget, configured.time_budget);
-  EXPECT_EQ(r.algorithm, configured.algorithm);
-  EXPECT_EQ(r.w1, configured.w1);
-  EXPECT_EQ(r.w2, configured.w2);
-  EXPECT_EQ(r.ignore_goal_heading, configured.ignore_goal_heading);
-  EXPECT_EQ(r.start_tolerance, configured.start_tolerance);
+  EXPECT_EQ(fields(r), fields(expected));
 }
 
 TEST(PlannerRequest, TheQueryTakesTheParametersWhereTheRequestLeavesThemOpen) {
@@ -105,23 +99,20 @@ TEST(PlannerRequest, BadRequestsAreRefusedWithTheirReasonInOrder) {
   r.time_budget = -1.0;  // the algorithm is checked first
   EXPECT_FALSE(queryFor(r, p, &q, &error));
   EXPECT_NE(error.find("dijkstra"), std::string::npos) << error;
-  for (double budget : {-1.0, nan, inf}) {
-    r = PlannerRequest{};
-    r.time_budget = budget;
-    r.goal_tolerance = -1.0;
-    EXPECT_FALSE(queryFor(r, p, &q, &error));
-    EXPECT_EQ(error, "time_budget must be finite and >= 0 (0: the default)") << budget;
-  }
-  for (double tolerance : {-0.1, nan, inf}) {
-    r = PlannerRequest{};
-    r.goal_tolerance = tolerance;
-    r.start_tolerance = -1.0;
-    EXPECT_FALSE(queryFor(r, p, &q, &error));
-    EXPECT_EQ(error, "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)") << tolerance;
-    r.goal_tolerance = 0.0;
-    r.start_tolerance = tolerance;
-    EXPECT_FALSE(queryFor(r, p, &q, &error));
-    EXPECT_EQ(error, "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)") << tolerance;
+  // In the order they are checked: a bad value is reported when those before it are good,
+  // whatever those after it are.
+  const std::vector<std::pair<double PlannerRequest::*, std::string>> checked = {
+      {&PlannerRequest::time_budget, "time_budget must be finite and >= 0 (0: the default)"},
+      {&PlannerRequest::goal_tolerance, "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)"},
+      {&PlannerRequest::start_tolerance, "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)"}};
+  for (std::size_t i = 0; i < checked.size(); ++i) {
+    for (double bad : {-0.1, -1.0, nan, inf}) {
+      r = PlannerRequest{};
+      r.*checked[i].first = bad;
+      for (std::size_t later = i + 1; later < checked.size(); ++later) r.*checked[later].first = -1.0;
+      EXPECT_FALSE(queryFor(r, p, &q, &error));
+      EXPECT_EQ(error, checked[i].second) << bad;
+    }
   }
   PlannerParams bad_default;
   bad_default.default_time_budget = -2.0;
