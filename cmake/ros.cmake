@@ -9,10 +9,13 @@ add_library(amha_ros
   src/ros/planner_params.cpp
   src/ros/plan_queue.cpp
   src/ros/latest_job_runner.cpp
+  src/ros/map_tracker.cpp
   src/ros/freed_memory.cpp
   src/ros/plan_anytime_server.cpp
   src/ros/planner_server.cpp
+  src/ros/response_conversion.cpp
   src/ros/reconfigure.cpp
+  src/ros/request_conversion.cpp
 )
 target_include_directories(amha_ros PUBLIC include ${catkin_INCLUDE_DIRS})
 target_link_libraries(amha_ros PUBLIC amha_lattice ${catkin_LIBRARIES} Threads::Threads)
@@ -68,9 +71,11 @@ install(FILES ${_amha_index}/nodelet__pluginlib__plugin/${PROJECT_NAME}
 # AMENT_PREFIX_PATH, so that roslaunch finds the nodelet without any export by hand.
 catkin_add_env_hooks(50.amha_planner_ament_prefix SHELLS sh DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/cmake/env-hooks)
 
-# Unit tests of the message conversions (the request queue's are in robustness.cmake: ROS-free).
+# Unit tests of the message conversions, the requests and the responses (the request queue's
+# are in robustness.cmake: ROS-free).
 amha_add_gtest(amha_ros_unit_tests
-  SOURCES test/ros/conversions_test.cpp
+  SOURCES test/ros/conversions_test.cpp test/ros/request_conversion_test.cpp
+          test/ros/response_conversion_test.cpp
   LIBS amha_ros)
 
 # rostest nodes (test/ros/*.test, run by scripts/test). Built with everything, into the devel

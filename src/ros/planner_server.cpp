@@ -1,11 +1,10 @@
-// The planning server (see planner_server.h): threads, tf2, and the mapping between the
-// lattice planner's results and the interfaces' status codes.
+// The planning server (see planner_server.h): the request queue, cancels and tf2. The maps and
+// their planner are MapTracker's; requests and responses are request_conversion.h's and
+// response_conversion.h's.
 #include "amha_planner/ros/planner_server.h"
 
 #include <chrono>
-#include <cmath>
 #include <future>
-#include <sstream>
 #include <utility>
 
 #include <tf2/exceptions.h>
@@ -15,112 +14,27 @@
 #include "amha_planner/lattice/path_smoother.h"
 #include "amha_planner/ros/conversions.h"
 #include "amha_planner/ros/reconfigure.h"
+#include "amha_planner/ros/response_conversion.h"
 
 namespace amha_planner {
 
 namespace lat = amha::lattice;
 using Status = Plan::Response;
 
-// The action result repeats the service's codes; keep them identical.
-#define AMHA_SAME_CODE(c) \
-  static_assert(static_cast<unsigned>(Status::c) == static_cast<unsigned>(PlanAnytimeResult::c), \
-                "Plan.srv and PlanAnytime.action disagree on " #c)
-AMHA_SAME_CODE(SUCCESS);
-AMHA_SAME_CODE(CANCELLED);
-AMHA_SAME_CODE(INVALID_START);
-AMHA_SAME_CODE(INVALID_GOAL);
-AMHA_SAME_CODE(NO_PATH_FOUND);
-AMHA_SAME_CODE(TIME_EXHAUSTED);
-AMHA_SAME_CODE(MEMORY_EXHAUSTED);
-AMHA_SAME_CODE(TF_ERROR);
-AMHA_SAME_CODE(NO_MAP);
-AMHA_SAME_CODE(INVALID_REQUEST);
-AMHA_SAME_CODE(INTERNAL_ERROR);
-AMHA_SAME_CODE(OUT_OF_MAP);
-AMHA_SAME_CODE(BUSY);
-#undef AMHA_SAME_CODE
-
 namespace {
-
-const char* statusCodeName(std::uint32_t s) {
-  switch (s) {
-    case Status::SUCCESS: return "SUCCESS";
-    case Status::CANCELLED: return "CANCELLED";
-    case Status::INVALID_START: return "INVALID_START";
-    case Status::INVALID_GOAL: return "INVALID_GOAL";
-    case Status::NO_PATH_FOUND: return "NO_PATH_FOUND";
-    case Status::TIME_EXHAUSTED: return "TIME_EXHAUSTED";
-    case Status::MEMORY_EXHAUSTED: return "MEMORY_EXHAUSTED";
-    case Status::TF_ERROR: return "TF_ERROR";
-    case Status::NO_MAP: return "NO_MAP";
-    case Status::INVALID_REQUEST: return "INVALID_REQUEST";
-    case Status::INTERNAL_ERROR: return "INTERNAL_ERROR";
-    case Status::OUT_OF_MAP: return "OUT_OF_MAP";
-    case Status::BUSY: return "BUSY";
-  }
-  return "UNKNOWN";
-}
-
-std::uint32_t statusForQueryError(lat::QueryError e) {
-  switch (e) {
-    case lat::QueryError::kStartNotFinite:
-    case lat::QueryError::kStartInCollision: return Status::INVALID_START;
-    case lat::QueryError::kGoalNotFinite:
-    case lat::QueryError::kGoalInCollision: return Status::INVALID_GOAL;
-    case lat::QueryError::kGoalUnreachable: return Status::NO_PATH_FOUND;
-    case lat::QueryError::kStartOutOfMap:
-    case lat::QueryError::kGoalOutOfMap: return Status::OUT_OF_MAP;
-    case lat::QueryError::kNone: break;
-  }
-  return Status::INTERNAL_ERROR;
-}
 
 /// Blocks of this size or more are mapped alone (~release_freed_memory): a 4000 x 4000 map's
 /// arrays are tens of MB each, a request's small vectors far below.
 constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
 
-/// What a client is told when the request queue is full.
-std::string busyMessage(int max_queued) {
-  return "busy: one request is planning and " + std::to_string(max_queued) +
-         " are waiting (~max_queued_requests); try again later";
-}
-
-std::string fmt(double v, int precision = 3) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << std::fixed << v;
-  return s.str();
-}
-
-// Moves rather than copies: with every solution's path a result can be megabytes, and a
-// cancelled goal's result should leave at once.
-template <class Result>
-void moveResponse(Plan::Response&& in, Result* out) {
-  out->status = in.status;
-  out->message = std::move(in.message);
-  out->request_id = in.request_id;
-  out->path = std::move(in.path);
-  out->cost = in.cost;
-  out->bound = in.bound;
-  out->certified_bound = in.certified_bound;
-  out->planning_time = in.planning_time;
-  out->expansions = in.expansions;
-  out->solutions = std::move(in.solutions);
-  out->goal_substituted = in.goal_substituted;
-  out->planned_goal = std::move(in.planned_goal);
-  out->start_escaped = in.start_escaped;
-  out->escape_end = std::move(in.escape_end);
-}
-
 }  // namespace
 
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
-    : nh_(nh), pnh_(pnh), startup_(loadPlannerParams(pnh)), params_(std::make_shared<const PlannerParams>(startup_)) {
+    : nh_(nh), pnh_(pnh), startup_(loadPlannerParams(pnh)), params_(startup_) {
   if (startup_.release_freed_memory && !mapLargeBlocksAlone(kLargeBlockBytes)) {
     ROS_WARN("amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
   }
   queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(startup_.max_queued_requests));
-  builder_ = std::make_unique<LatestJobRunner>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
 
   // Publishers are thread-safe; they live on the private handle (~solutions, ~plan, ~footprints).
@@ -128,13 +42,12 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   path_pub_ = pnh_.advertise<nav_msgs::Path>("plan", 1, /*latch=*/true);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("footprints", 1, /*latch=*/true);
 
-  ros::NodeHandle map_nh(nh_);
-  map_nh.setCallbackQueue(&map_queue_);
-  map_sub_ = map_nh.subscribe("map", 1, &PlannerServer::onMap, this);
-  // Partial updates on "<map topic>_updates", as costmap_2d publishes them and rviz reads them.
-  // Each one changes the map, so the queue is long: a dropped update would leave it wrong.
-  map_updates_sub_ = map_nh.subscribe(map_sub_.getTopic() + "_updates", 100,
-                                      &PlannerServer::onMapUpdate, this);
+  map_tracker_ = std::make_unique<MapTracker>(
+      nh_, startup_, params_,
+      [this](const std::string& frame, const ros::Time& stamp, double timeout) {
+        return lookupTransform(startup_.global_frame, frame, stamp, timeout, nullptr);
+      },
+      [this] { releaseFreedMemory(); });
 
   ros::NodeHandle service_nh(pnh_);
   service_nh.setCallbackQueue(&service_queue_);
@@ -149,11 +62,10 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   action_server_->start();
 
   // Waiting service calls each hold a thread; one more answers BUSY while the queue is full.
-  map_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &map_queue_);
   service_spinner_ = std::make_unique<ros::AsyncSpinner>(
       static_cast<std::uint32_t>(startup_.max_queued_requests + 2), &service_queue_);
   action_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &action_queue_);
-  map_spinner_->start();
+  map_tracker_->start();
   service_spinner_->start();
   action_spinner_->start();
 
@@ -166,7 +78,7 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   ROS_INFO_STREAM("amha_planner: ready; algorithm " << amha::algorithmName(startup_.algorithm)
                   << ", global frame '" << startup_.global_frame << "', robot frame '"
                   << startup_.robot_base_frame << "', waiting for a map on "
-                  << map_sub_.getTopic());
+                  << map_tracker_->mapTopic());
 }
 
 PlannerServer::~PlannerServer() {
@@ -177,24 +89,17 @@ PlannerServer::~PlannerServer() {
     for (const auto& flag : cancel_flags_) *flag = true;
   }
   // Stop taking callbacks; waiting service threads return as their cancelled jobs finish.
-  map_spinner_->stop();
-  stop_builds_ = true;
-  builder_.reset();  // stops a build under way, drops one waiting
-  planner_built_.notify_all();
+  map_tracker_->stop();  // stops a build under way, drops one waiting
   action_spinner_->stop();
   service_spinner_->stop();
   queue_.reset();
   action_server_.reset();
-  map_sub_.shutdown();
-  map_updates_sub_.shutdown();
+  map_tracker_.reset();
   plan_srv_.shutdown();
   make_plan_srv_.shutdown();
 }
 
-std::shared_ptr<const PlannerParams> PlannerServer::params() const {
-  std::lock_guard<std::mutex> lock(params_mutex_);
-  return params_;
-}
+std::shared_ptr<const PlannerParams> PlannerServer::params() const { return params_.get(); }
 
 void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
   const std::shared_ptr<const PlannerParams> current = params();
@@ -206,7 +111,7 @@ void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
   std::string error;
   bool ok = paramsFromConfig(config, *current, pnh_, next.get(), &error);
   if (ok && rebuild) {
-    const auto planner = currentPlanner();
+    const auto planner = map_tracker_->currentPlanner();
     ok = latticeBuilds(*next, planner ? &planner->map() : nullptr, &error);
   }
   const std::string what = changedParameters(in_force, config);
@@ -216,20 +121,7 @@ void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
     config = in_force;  // what the reply (and rqt_reconfigure) then shows
     return;
   }
-  bool have_map = false;
-  {
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    {
-      std::lock_guard<std::mutex> params_lock(params_mutex_);
-      params_ = std::move(next);
-    }
-    have_map = !last_map_.data.empty();
-    if (rebuild && have_map) {
-      reconfigured_ = true;
-      ++map_version_;  // requests from now on wait for the planner built with them
-    }
-  }
-  if (rebuild && have_map) builder_->post([this] { rebuildPlanner(); });
+  const bool have_map = map_tracker_->setParams(std::move(next), rebuild);
   ROS_INFO("amha_planner: reconfigured: %s; %s", what.c_str(),
            !rebuild ? "in force for the requests that start planning from now on"
                     : have_map ? "rebuilding the planner from the current map (requests from now on wait for it)"
@@ -244,11 +136,6 @@ void PlannerServer::releaseFreedMemory() {
   }
 }
 
-std::shared_ptr<lat::LatticePlanner> PlannerServer::currentPlanner() const {
-  std::lock_guard<std::mutex> lock(planner_mutex_);
-  return planner_;
-}
-
 std::shared_ptr<std::atomic<bool>> PlannerServer::newCancelFlag() {
   auto flag = std::make_shared<std::atomic<bool>>(false);
   std::lock_guard<std::mutex> lock(flags_mutex_);
@@ -260,254 +147,6 @@ std::shared_ptr<std::atomic<bool>> PlannerServer::newCancelFlag() {
 void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& flag) {
   std::lock_guard<std::mutex> lock(flags_mutex_);
   cancel_flags_.erase(flag);
-}
-
-bool PlannerServer::mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, double tf_timeout,
-                                     nav_msgs::OccupancyGrid* out, std::string* why) {
-  *out = in;
-  const std::string frame = normaliseFrame(in.header.frame_id);
-  if (frame.empty() || frame == startup_.global_frame) return true;
-  // The transform when the map was made (the latest one if it has no stamp): a map in a frame
-  // that moves (odom) is placed where that frame was then.
-  try {
-    const auto t = lookupTransform(startup_.global_frame, frame, in.header.stamp, tf_timeout, nullptr);
-    geometry_msgs::PoseStamped origin, moved;
-    origin.header = in.header;
-    origin.pose = in.info.origin;
-    tf2::doTransform(origin, moved, t);
-    out->info.origin = moved.pose;
-  } catch (const tf2::TransformException& e) {
-    *why = "it is in frame '" + frame + "', and there is no transform to the global frame '" +
-           startup_.global_frame + "' (" + e.what() + ")";
-    return false;
-  }
-  return true;
-}
-
-void PlannerServer::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
-  // Checked (converted) here, so that a malformed map never replaces a good one; the planner
-  // is built from this grid on the builder thread.
-  std::shared_ptr<const lat::GridMap> grid;
-  const std::shared_ptr<const PlannerParams> p = params();
-  nav_msgs::OccupancyGrid placed;
-  std::string why;
-  try {
-    if (!mapInGlobalFrame(*msg, p->tf_timeout, &placed, &why)) throw std::runtime_error(why);
-    grid = std::make_shared<const lat::GridMap>(
-        gridMapFromOccupancy(placed, p->occupancy, startup_.max_map_cells));
-  } catch (const std::exception& e) {
-    ROS_ERROR("amha_planner: map refused (%ux%u, resolution %g, %zu cells of data): %s; %s",
-              msg->info.width, msg->info.height, msg->info.resolution, msg->data.size(), e.what(),
-              currentPlanner() ? "keeping the previous map" : "no map yet, requests get NO_MAP");
-    std::lock_guard<std::mutex> lock(planner_mutex_);
-    refused_map_reason_ = e.what();
-    return;
-  }
-  const std::string frame = normaliseFrame(msg->header.frame_id);
-  if (!frame.empty() && frame != startup_.global_frame) {
-    ROS_INFO("amha_planner: the map is in frame '%s': its origin, transformed into '%s', is (%.3f, %.3f)",
-             msg->header.frame_id.c_str(), startup_.global_frame.c_str(), placed.info.origin.position.x,
-             placed.info.origin.position.y);
-  }
-  {
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    // Its header keeps the frame it came in (updates name it); its origin is in the global frame.
-    last_map_ = std::move(placed);
-    ++map_version_;
-    unbuilt_grid_ = std::move(grid);
-    // Converted as the parameters said before a reconfiguration changed them: convert it again.
-    const auto now = params();
-    if (now->occupancy.lethal_threshold != p->occupancy.lethal_threshold ||
-        now->occupancy.unknown_is_free != p->occupancy.unknown_is_free) {
-      reconfigured_ = true;
-    }
-    unbuilt_updates_ = 0;  // the updates before it are overwritten
-    unbuilt_rect_ = lat::CellRect{};
-  }
-  builder_->post([this] { rebuildPlanner(); });
-}
-
-void PlannerServer::onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update) {
-  {
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    if (last_map_.data.empty()) {
-      ROS_WARN_THROTTLE(5.0, "amha_planner: a map update on %s came before any valid map on %s: "
-                        "ignored", map_updates_sub_.getTopic().c_str(), map_sub_.getTopic().c_str());
-      return;
-    }
-    // Checked before any cell is written: a refused update leaves the map as it was.
-    try {
-      applyOccupancyGridUpdate(*update, &last_map_);
-    } catch (const std::exception& e) {
-      ROS_ERROR("amha_planner: %s; keeping the current map", e.what());
-      return;
-    }
-    ++map_version_;
-    ++unbuilt_updates_;
-    // applyOccupancyGridUpdate checked that the rectangle lies inside the map.
-    const auto x = static_cast<int>(update->x), y = static_cast<int>(update->y);
-    unbuilt_rect_ = unbuilt_rect_.unite(lat::CellRect{x, y, x + static_cast<int>(update->width),
-                                                      y + static_cast<int>(update->height)});
-  }
-  builder_->post([this] { rebuildPlanner(); });
-}
-
-void PlannerServer::rebuildPlanner() {
-  const auto t0 = std::chrono::steady_clock::now();
-  BuildInput in = takeUnbuiltMap();
-  // Built off the locks: plans keep using the previous planner until the swap.
-  std::shared_ptr<lat::LatticePlanner> planner;
-  if (in.grid) {
-    try {
-      // A robot too large for the map, or per-map data beyond the memory cap, is refused
-      // before the work (LatticeError, SetupStopped); shutdown stops a build under way.
-      amha::SearchLimits limits;
-      limits.cancel = &stop_builds_;
-      limits.max_memory_bytes = static_cast<std::size_t>(in.params->max_memory_mb * 1024.0 * 1024.0);
-      planner = in.previous ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
-                            : std::make_shared<lat::LatticePlanner>(in.grid, in.params->lattice, limits);
-    } catch (const std::exception& e) {
-      in.error = e.what();
-    }
-  }
-  const bool incremental = in.previous != nullptr;
-  in.previous = nullptr;  // see installPlanner
-  const std::shared_ptr<lat::LatticePlanner> built = planner;
-  const bool have_planner = installPlanner(std::move(planner), in.version, in.full_map ? in.error : "");
-  logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), have_planner,
-           incremental);
-  // The replaced planner's arrays (megabytes per million cells) would otherwise stay resident.
-  releaseFreedMemory();
-  if (built) prepareKinematicTables(*built);
-}
-
-void PlannerServer::prepareKinematicTables(const lat::LatticePlanner& planner) {
-  // The tables depend on the primitives and cost model only and are shared by every later
-  // planner (kinematic_table.h), so this builds them once, after the first map, off the
-  // requests' path; a request that comes first builds its own table and this waits for it.
-  const std::size_t before = planner.kinematicTableBytes();
-  const auto t0 = std::chrono::steady_clock::now();
-  amha::SearchLimits limits;
-  limits.cancel = &stop_builds_;
-  const bool complete = planner.prepareKinematicTables(limits);
-  const std::size_t after = planner.kinematicTableBytes();
-  if (after != before || !complete) {
-    ROS_INFO("amha_planner: kinematic tables %s in %.2f s, %.1f MB", complete ? "built" : "stopped",
-             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), after / 1e6);
-  }
-}
-
-PlannerServer::BuildInput PlannerServer::takeUnbuiltMap() {
-  BuildInput in;
-  // The current planner is the last build's (this thread makes them all): after updates alone
-  // its map differs from the new one only in the updates' rectangle.
-  in.previous = currentPlanner();
-  std::lock_guard<std::mutex> lock(map_mutex_);
-  in.params = params();  // under map_mutex_, as a reconfiguration sets them with reconfigured_
-  in.reconfigured = reconfigured_;
-  reconfigured_ = false;
-  in.version = map_version_;
-  in.updates = unbuilt_updates_;
-  in.changed = unbuilt_rect_;
-  const std::shared_ptr<const lat::GridMap> full_grid = std::move(unbuilt_grid_);
-  in.full_map = full_grid != nullptr;
-  if (in.full_map || build_failed_ || in.reconfigured) in.previous = nullptr;
-  unbuilt_updates_ = 0;
-  unbuilt_grid_ = nullptr;
-  unbuilt_rect_ = lat::CellRect{};
-  in.width = last_map_.info.width;
-  in.height = last_map_.info.height;
-  in.resolution = last_map_.info.resolution;
-  // `changed` is relative to the full map's grid, or else to the previous planner's map;
-  // only its cells are converted again.
-  const lat::GridMap* base = in.full_map ? full_grid.get() : in.previous ? &in.previous->map() : nullptr;
-  try {
-    if (in.reconfigured) {  // every cell again, with the new conversion
-      in.grid = std::make_shared<const lat::GridMap>(
-          gridMapFromOccupancy(last_map_, in.params->occupancy, startup_.max_map_cells));
-    } else if (in.full_map && in.changed.empty()) {
-      in.grid = full_grid;
-    } else if (base != nullptr) {
-      auto patched = std::make_shared<lat::GridMap>(*base);
-      convertOccupancyCells(last_map_, in.changed, in.params->occupancy, patched.get());
-      in.grid = std::move(patched);
-    } else {  // after a failed build: the current planner's map may be an older one
-      in.grid = std::make_shared<const lat::GridMap>(
-          gridMapFromOccupancy(last_map_, in.params->occupancy, startup_.max_map_cells));
-    }
-  } catch (const std::exception& e) {
-    in.error = e.what();
-  }
-  return in;
-}
-
-bool PlannerServer::installPlanner(std::shared_ptr<lat::LatticePlanner> planner, std::uint64_t version,
-                                   const std::string& map_error) {
-  {
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    build_failed_ = !planner;
-  }
-  bool have_planner = false;
-  std::shared_ptr<lat::LatticePlanner> replaced;
-  {
-    std::lock_guard<std::mutex> lock(planner_mutex_);
-    if (planner) {
-      replaced = std::move(planner_);
-      planner_ = std::move(planner);
-    }
-    have_planner = planner_ != nullptr;
-    built_version_ = version;  // a refused map counts as built: requests must not wait for it
-    if (planner_ == nullptr && !map_error.empty()) refused_map_reason_ = map_error;
-  }
-  // Released before the waiting requests wake (unless a running plan still holds it): the new
-  // planner then holds the heuristic grids it kept from it alone, and repairs them in place.
-  replaced = nullptr;
-  planner_built_.notify_all();
-  return have_planner;
-}
-
-void PlannerServer::logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const {
-  // A reconfiguration of the robot or the map conversion rebuilds the current map in full.
-  std::string what = in.full_map ? "map" : in.reconfigured ? "map (new parameters)" : "";
-  if (in.updates > 0) {
-    what += (in.full_map ? " + " : "") + std::to_string(in.updates) +
-            (in.updates == 1 ? " update" : " updates (one build)");
-  }
-  if (!in.error.empty()) {
-    const char* kept = have_planner ? "plans keep the previous planner" : "requests get NO_MAP";
-    if (in.full_map || in.reconfigured) {
-      ROS_ERROR("amha_planner: %s %ux%u refused: %s; %s", what.c_str(), in.width, in.height,
-                in.error.c_str(), kept);
-    } else {  // every update of a refused map would say the same
-      ROS_ERROR_THROTTLE(5.0, "amha_planner: %s %ux%u refused: %s; %s", what.c_str(), in.width,
-                         in.height, in.error.c_str(), kept);
-    }
-    return;
-  }
-  // Updates can come several times a second (costmap_2d): one line each only when debugging.
-  ROS_LOG(in.full_map || in.reconfigured ? ros::console::levels::Info : ros::console::levels::Debug,
-          ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
-          "ready in %.2f s%s", what.c_str(), in.width, in.height, in.resolution, seconds,
-          incremental ? " (rebuilt near the change only)" : "");
-}
-
-PlannerServer::MapWait PlannerServer::waitForCurrentMap(const std::atomic<bool>& cancel,
-                                                        std::chrono::steady_clock::time_point deadline) {
-  std::uint64_t wanted = 0;
-  {
-    std::lock_guard<std::mutex> lock(map_mutex_);
-    wanted = map_version_;
-  }
-  std::unique_lock<std::mutex> lock(planner_mutex_);
-  while (built_version_ < wanted) {
-    if (cancel || shutting_down_) return MapWait::kCancelled;
-    if (std::chrono::steady_clock::now() >= deadline) return MapWait::kTimeUp;
-    // onCancel notifies under planner_mutex_, so a cancel wakes this at once; the timeout only
-    // covers shutdown and the deadline.
-    const auto poll = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
-    planner_built_.wait_until(lock, std::min(deadline, poll));
-  }
-  return MapWait::kReady;
 }
 
 geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string& target, const std::string& source,
@@ -578,245 +217,64 @@ bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_
   return true;
 }
 
-Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
+Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
                                       const std::atomic<bool>& cancel, const SolutionSink& sink) {
-  Plan::Response res;
-  res.request_id = id;
-  res.status = Status::INTERNAL_ERROR;
   const std::string& frame = startup_.global_frame;
   const ros::Time stamp = ros::Time::now();
-  res.path.header.frame_id = frame;
-  res.path.header.stamp = stamp;
+  Plan::Response res = responseWithoutPath(id, Status::INTERNAL_ERROR, "", frame, stamp);
+  const auto answer = [&res](std::uint32_t status, std::string message) {  // without planning
+    res.status = status;
+    res.message = std::move(message);
+    return std::move(res);
+  };
   try {
-    if (shutting_down_) {
-      res.status = Status::CANCELLED;
-      res.message = "the planner is shutting down";
-      return res;
-    }
-    if (cancel) {
-      res.status = Status::CANCELLED;
-      res.message = "cancelled before planning started";
-      return res;
-    }
+    if (shutting_down_) return answer(Status::CANCELLED, "the planner is shutting down");
+    if (cancel) return answer(Status::CANCELLED, "cancelled before planning started");
     // The parameters in force when the request starts planning hold for the whole of it,
     // whatever changes meanwhile (its budget, transforms and search).
     const std::shared_ptr<const PlannerParams> params = this->params();
-    amha::PlannerConfig config;
+    PlanQuery query;
     std::string error;
-    if (!searchConfigFor(*params, r.algorithm, r.w1, r.w2, &config, &error)) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = error;
-      return res;
-    }
-    const double budget = r.time_budget == 0.0 ? params->default_time_budget : r.time_budget;
-    if (!std::isfinite(budget) || budget < 0.0) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = "time_budget must be finite and >= 0 (0: the default)";
-      return res;
-    }
-    if (!std::isfinite(r.goal_tolerance) || r.goal_tolerance < 0.0) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)";
-      return res;
-    }
-    if (!std::isfinite(r.start_tolerance) || r.start_tolerance < 0.0) {
-      res.status = Status::INVALID_REQUEST;
-      res.message = "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)";
-      return res;
-    }
+    if (!queryFor(r, *params, &query, &error)) return answer(Status::INVALID_REQUEST, error);
     // The budget counts from here: the transforms and the wait for the newest map's planner use
     // it too. Poses come first: their errors do not depend on the map.
     const auto started = std::chrono::steady_clock::now();
     const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                        std::chrono::duration<double>(std::min(budget, 1e9)));
+                                        std::chrono::duration<double>(std::min(query.time_budget, 1e9)));
     geometry_msgs::PoseStamped start, goal;
     try {
       if (!toGlobalFrame(r.start, true, params->tf_timeout, &start, &res, cancel)) return res;
       if (!toGlobalFrame(r.goal, false, params->tf_timeout, &goal, &res, cancel)) return res;
     } catch (const TransformCancelled&) {
-      res.status = Status::CANCELLED;
-      res.message = "cancelled while waiting for a transform";
-      return res;
+      return answer(Status::CANCELLED, "cancelled while waiting for a transform");
     }
     // Every map and update received before this request is in the planner it gets (at most
     // the build under way and one more); it keeps that planner even if a new map arrives.
-    switch (waitForCurrentMap(cancel, deadline)) {
-      case MapWait::kReady:
+    switch (map_tracker_->waitForCurrentPlanner(cancel, shutting_down_, deadline)) {
+      case MapTracker::Wait::kReady:
         break;
-      case MapWait::kCancelled:
-        res.status = Status::CANCELLED;
-        res.message = shutting_down_ ? "the planner is shutting down"
-                                     : "cancelled while the newest map's planner was being built";
-        return res;
-      case MapWait::kTimeUp:
-        res.status = Status::TIME_EXHAUSTED;
-        res.message = "time budget of " + fmt(budget, 2) +
-                      " s used up while the newest map's planner was being built";
-        return res;
+      case MapTracker::Wait::kCancelled:
+        return answer(Status::CANCELLED, shutting_down_ ? "the planner is shutting down"
+                                                        : "cancelled while the newest map's planner was being built");
+      case MapTracker::Wait::kTimeUp:
+        return answer(Status::TIME_EXHAUSTED,
+                      budgetUsedUp(query.time_budget) + " while the newest map's planner was being built");
     }
-    const auto planner = currentPlanner();
+    const auto planner = map_tracker_->currentPlanner();
     if (!planner) {
-      std::lock_guard<std::mutex> lock(planner_mutex_);
-      res.status = Status::NO_MAP;
-      res.message = refused_map_reason_.empty()
-                        ? "no valid map received on " + map_sub_.getTopic() + " yet"
-                        : "no usable map on " + map_sub_.getTopic() + " yet: the last one was refused: " +
-                              refused_map_reason_;
-      return res;
+      return answer(Status::NO_MAP, noMapMessage(map_tracker_->mapTopic(), map_tracker_->refusedMapReason()));
     }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    limits.time_limit_s = std::max(0.0, budget - waited);
+    limits.time_limit_s = std::max(0.0, query.time_budget - waited);
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params->max_memory_mb * 1024.0 * 1024.0);
-
-    lat::GoalOptions goal_options;
-    goal_options.tolerance = r.goal_tolerance;
-    goal_options.any_heading = r.ignore_goal_heading || params->ignore_goal_heading;
-    lat::StartOptions start_options;
-    start_options.tolerance = r.start_tolerance > 0.0 ? r.start_tolerance : params->start_tolerance;
-    start_options.penalty = params->start_escape_penalty;
-
-    // Each improvement is published as it is found (~solutions, ~plan, ~footprints), smoothed
-    // with ~smooth_path.
-    std::unique_ptr<lat::PathSmoother> smoother;
-    std::unique_ptr<lat::SmoothedStream> stream;
-    if (params->smooth_path) {
-      smoother = std::make_unique<lat::PathSmoother>(planner->graph());
-      stream = std::make_unique<lat::SmoothedStream>(*smoother);
-    }
-    std::vector<amha::StateId> previous_ids;  // state ids identify a lattice path exactly
-    std::vector<lat::Pose2D> best_poses;      // of the path published last
-    const auto on_solution = [&](const lat::LatticeSolution& solution) {
-      const bool same_lattice_path = !res.solutions.empty() && previous_ids == solution.search.path;
-      previous_ids = solution.search.path;
-      PlanSolution m;
-      const lat::LatticeSolution* shown = &solution;
-      bool smoothed = false;
-      if (stream) {
-        try {
-          const lat::SmoothedStream::Step& step = stream->add(solution);
-          m = smoothedSolutionMsg(step.published, solution, id, frame, stamp);
-          m.same_path_as_previous = !res.solutions.empty() && step.same_as_previous;
-          shown = &step.published;
-          smoothed = true;
-        } catch (const std::exception& e) {
-          ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id, e.what());
-        }
-      }
-      if (!smoothed) {
-        m = planSolutionMsg(solution, id, frame, stamp);
-        m.same_path_as_previous = same_lattice_path;
-      }
-      best_poses = shown->poses;
-      solutions_pub_.publish(m);
-      if (!m.same_path_as_previous) {
-        path_pub_.publish(m.path);
-        // With a goal tolerance or any goal heading the path may end elsewhere than at the
-        // goal pose: mark where it really ends.
-        const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
-        const lat::Pose2D& goal_mark = free_end ? shown->poses.back() : g;
-        markers_pub_.publish(footprintMarkers(*planner, shown->poses, s, goal_mark, frame, stamp,
-                                              params->marker_spacing));
-      }
-      if (sink) sink(m);
-      if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
-      if (same_lattice_path) m.lattice_path.poses.clear();
-      res.solutions.push_back(std::move(m));
-    };
-    const lat::PlanResult result = planner->plan(s, g, start_options, goal_options, config, limits, on_solution);
-    res.planning_time =
-        result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds + result.escape_seconds;
-    if (result.error == lat::QueryError::kNone) {
-      ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
-                result.heuristic_seconds);
-    }
-    res.expansions = result.search.expansions;
-
-    if (result.error != lat::QueryError::kNone) {
-      res.status = statusForQueryError(result.error);
-      res.message = result.message;
-      return res;
-    }
-    res.goal_substituted = result.goal_substituted;
-    if (result.planned_goal) res.planned_goal = poseStampedFromPose2D(*result.planned_goal, frame, stamp);
-    res.start_escaped = result.start_escaped;
-    if (result.start_escaped && !result.solutions.empty()) {
-      const lat::LatticeSolution& best = result.solutions.back();
-      res.escape_end = poseStampedFromPose2D(best.poses[best.escape_poses - 1], frame, stamp);
-    }
-    // Told after the outcome: "...; start (..) is in collision; the path leaves it by ...",
-    // "...; goal (..) is in collision; planning to ... instead".
-    std::string substitution = result.start_escaped ? "; " + result.escape_message : "";
-    if (result.goal_substituted) substitution += "; " + result.message;
-    const auto status = result.search.status;
-    if (!res.solutions.empty()) {
-      const PlanSolution& best = res.solutions.back();
-      res.path = pathFromPoses(best_poses, frame, stamp);
-      res.cost = best.cost;
-      res.bound = best.bound;
-      res.certified_bound = best.certified_bound;
-      const std::string summary = std::to_string(res.solutions.size()) +
-                                  " solution(s), best cost " + fmt(best.cost) + " m, bound " +
-                                  fmt(best.bound, 2) + ", certified " +
-                                  fmt(best.certified_bound, 2) +
-                                  (best.smoothed ? " (smoothed; lattice path " + fmt(best.lattice_cost) + " m)" : "");
-      res.status = Status::SUCCESS;
-      switch (status) {
-        case amha::SearchStatus::kProvenOptimal:
-          res.message = "optimal path: " + summary;
-          break;
-        case amha::SearchStatus::kBoundReached:
-          res.message = "path within the requested bound: " + summary;
-          break;
-        case amha::SearchStatus::kTimeLimit:
-          res.message = "time budget of " + fmt(budget, 2) +
-                        " s used up; returning the best path so far: " + summary;
-          break;
-        case amha::SearchStatus::kMemoryLimit:
-        case amha::SearchStatus::kExpansionLimit:
-          res.message = std::string("search stopped (") + amha::statusName(status) +
-                        "); returning the best path so far: " + summary;
-          break;
-        case amha::SearchStatus::kCancelled:
-          res.status = Status::CANCELLED;
-          res.message = "cancelled; returning the best path so far: " + summary;
-          break;
-        case amha::SearchStatus::kNoSolution:
-          res.status = Status::INTERNAL_ERROR;
-          res.message = "the search reported no solution after finding one: " + summary;
-          break;
-      }
-      res.message += substitution;
-      return res;
-    }
-    switch (status) {
-      case amha::SearchStatus::kNoSolution:
-        res.status = Status::NO_PATH_FOUND;
-        res.message = "no path: the goal cannot be reached from the start on this map";
-        break;
-      case amha::SearchStatus::kTimeLimit:
-        res.status = Status::TIME_EXHAUSTED;
-        res.message = "time budget of " + fmt(budget, 2) + " s used up before any path was found";
-        break;
-      case amha::SearchStatus::kMemoryLimit:
-        res.status = Status::MEMORY_EXHAUSTED;
-        res.message = "memory cap of " + fmt(params->max_memory_mb, 0) +
-                      " MB (~max_memory_mb) reached before any path was found";
-        break;
-      case amha::SearchStatus::kCancelled:
-        res.status = Status::CANCELLED;
-        res.message = "cancelled before any path was found";
-        break;
-      default:
-        res.status = Status::INTERNAL_ERROR;
-        res.message = std::string("the search ended (") + amha::statusName(status) +
-                      ") without a solution";
-        break;
-    }
-    res.message += substitution;
+    std::vector<lat::Pose2D> best_poses;  // of the path published last
+    const lat::PlanResult result = search(*planner, *params, query, s, g, limits, sink, &res, &best_poses);
+    const ResponseContext context{frame, stamp, query.time_budget, params->max_memory_mb};
+    completeResponse(result, best_poses, context, &res);
   } catch (const std::exception& e) {
     res.status = Status::INTERNAL_ERROR;
     res.message = std::string("planner failure: ") + e.what();
@@ -824,7 +282,69 @@ Plan::Response PlannerServer::execute(const Request& r, std::uint32_t id,
   return res;
 }
 
-Plan::Response PlannerServer::runBlocking(const Request& request) {
+lat::PlanResult PlannerServer::search(lat::LatticePlanner& planner, const PlannerParams& params,
+                                      const PlanQuery& query, const lat::Pose2D& s, const lat::Pose2D& g,
+                                      const amha::SearchLimits& limits, const SolutionSink& sink,
+                                      Plan::Response* res, std::vector<lat::Pose2D>* best_poses) {
+  const std::uint32_t id = res->request_id;
+  const std::string& frame = startup_.global_frame;
+  const ros::Time stamp = res->path.header.stamp;
+  const lat::GoalOptions& goal_options = query.goal_options;
+  // Each improvement is published as it is found (~solutions, ~plan, ~footprints), smoothed
+  // with ~smooth_path.
+  std::unique_ptr<lat::PathSmoother> smoother;
+  std::unique_ptr<lat::SmoothedStream> stream;
+  if (params.smooth_path) {
+    smoother = std::make_unique<lat::PathSmoother>(planner.graph());
+    stream = std::make_unique<lat::SmoothedStream>(*smoother);
+  }
+  std::vector<amha::StateId> previous_ids;  // state ids identify a lattice path exactly
+  const auto on_solution = [&](const lat::LatticeSolution& solution) {
+    const bool same_lattice_path = !res->solutions.empty() && previous_ids == solution.search.path;
+    previous_ids = solution.search.path;
+    PlanSolution m;
+    const lat::LatticeSolution* shown = &solution;
+    bool smoothed = false;
+    if (stream) {
+      try {
+        const lat::SmoothedStream::Step& step = stream->add(solution);
+        m = smoothedSolutionMsg(step.published, solution, id, frame, stamp);
+        m.same_path_as_previous = !res->solutions.empty() && step.same_as_previous;
+        shown = &step.published;
+        smoothed = true;
+      } catch (const std::exception& e) {
+        ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id, e.what());
+      }
+    }
+    if (!smoothed) {
+      m = planSolutionMsg(solution, id, frame, stamp);
+      m.same_path_as_previous = same_lattice_path;
+    }
+    *best_poses = shown->poses;
+    solutions_pub_.publish(m);
+    if (!m.same_path_as_previous) {
+      path_pub_.publish(m.path);
+      // With a goal tolerance or any goal heading the path may end elsewhere than at the
+      // goal pose: mark where it really ends.
+      const bool free_end = goal_options.tolerance > 0.0 || goal_options.any_heading;
+      const lat::Pose2D& goal_mark = free_end ? shown->poses.back() : g;
+      markers_pub_.publish(footprintMarkers(planner, shown->poses, s, goal_mark, frame, stamp,
+                                            params.marker_spacing));
+    }
+    if (sink) sink(m);
+    if (m.same_path_as_previous) m.path.poses.clear();  // the previous entry has it
+    if (same_lattice_path) m.lattice_path.poses.clear();
+    res->solutions.push_back(std::move(m));
+  };
+  lat::PlanResult result = planner.plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
+  if (result.error == lat::QueryError::kNone) {
+    ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
+              result.heuristic_seconds);
+  }
+  return result;
+}
+
+Plan::Response PlannerServer::runBlocking(const PlannerRequest& request) {
   const std::uint32_t id = next_request_id_++;
   auto done = std::make_shared<std::promise<Plan::Response>>();
   std::future<Plan::Response> response = done->get_future();
@@ -836,12 +356,7 @@ Plan::Response PlannerServer::runBlocking(const Request& request) {
   });
   if (!queued) {
     releaseCancelFlag(flag);
-    Plan::Response busy;
-    busy.request_id = id;
-    busy.status = Status::BUSY;
-    busy.message = busyMessage(startup_.max_queued_requests);
-    busy.path.header.frame_id = startup_.global_frame;
-    return busy;
+    return busyResponse(id, startup_.max_queued_requests, startup_.global_frame);
   }
   return response.get();
 }
@@ -859,48 +374,22 @@ void logOutcome(const char* interface, const Plan::Response& res) {
 }  // namespace
 
 bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
-  Request r;
-  r.start = req.start;
-  r.goal = req.goal;
-  r.time_budget = req.time_budget;
-  r.algorithm = req.algorithm;
-  r.w1 = req.w1;
-  r.w2 = req.w2;
-  r.goal_tolerance = req.goal_tolerance;
-  r.ignore_goal_heading = req.ignore_goal_heading;
-  r.start_tolerance = req.start_tolerance;
-  res = runBlocking(r);
+  res = runBlocking(requestFrom(req));
   logOutcome("plan", res);
   return true;
 }
 
 bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
                                nav_msgs::GetPlan::Response& res) {
-  Request r;
-  r.start = req.start;
-  r.goal = req.goal;
-  r.goal_tolerance = req.tolerance;  // as move_base's: used when the goal is obstructed
-  const Plan::Response out = runBlocking(r);
+  const Plan::Response out = runBlocking(requestFrom(req));
   logOutcome("make_plan", out);
   // Like move_base's make_plan: an empty plan means failure (the log says why).
-  if (out.status == Status::SUCCESS) res.plan = out.path;
-  res.plan.header.frame_id = startup_.global_frame;
-  res.plan.header.stamp = out.path.header.stamp;
+  res = makePlanResponse(out, startup_.global_frame);
   return true;
 }
 
 void PlannerServer::onGoal(GoalHandle goal) {
-  const auto g = goal.getGoal();
-  Request r;
-  r.start = g->start;
-  r.goal = g->goal;
-  r.time_budget = g->time_budget;
-  r.algorithm = g->algorithm;
-  r.w1 = g->w1;
-  r.w2 = g->w2;
-  r.goal_tolerance = g->goal_tolerance;
-  r.ignore_goal_heading = g->ignore_goal_heading;
-  r.start_tolerance = g->start_tolerance;
+  const PlannerRequest r = requestFrom(*goal.getGoal());
   const std::uint32_t id = next_request_id_++;
   const std::string goal_id = goal.getGoalID().id;
   auto job = std::make_shared<GoalJob>();
@@ -930,11 +419,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
   }, &job->ticket);
   if (!queued) {
     releaseCancelFlag(job->cancel);
-    PlanAnytimeResult busy;
-    busy.request_id = id;
-    busy.status = Status::BUSY;
-    busy.message = busyMessage(startup_.max_queued_requests);
-    busy.path.header.frame_id = startup_.global_frame;
+    const PlanAnytimeResult busy = actionResult(busyResponse(id, startup_.max_queued_requests, startup_.global_frame));
     ROS_WARN("amha_planner: plan_anytime request %u: BUSY", id);
     goal.setRejected(busy, busy.message);
     return;
@@ -946,8 +431,7 @@ void PlannerServer::onGoal(GoalHandle goal) {
 void PlannerServer::finishGoal(GoalHandle& goal, Plan::Response&& res) {
   const std::uint32_t status = res.status;
   const std::string message = res.message;
-  PlanAnytimeResult result;
-  moveResponse(std::move(res), &result);
+  const PlanAnytimeResult result = actionResult(std::move(res));
   const auto state = goal.getGoalStatus().status;
   const bool client_cancelled = state == actionlib_msgs::GoalStatus::PREEMPTING ||
                                 state == actionlib_msgs::GoalStatus::RECALLING;
@@ -966,23 +450,17 @@ void PlannerServer::onCancel(GoalHandle goal) {
   if (it == goal_jobs_.end()) return;
   const std::shared_ptr<GoalJob> job = it->second;
   *job->cancel = true;
-  {
-    // A request waiting for the newest map's planner wakes now (waitForCurrentMap).
-    std::lock_guard<std::mutex> wake(planner_mutex_);
-    planner_built_.notify_all();
-  }
+  // A request waiting for the newest map's planner wakes now (waitForCurrentPlanner).
+  map_tracker_->wakeWaiters();
   // Still in the queue: answered now, not when the request before it ends; its job skips.
   int queued_phase = GoalJob::kQueued;
   if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kDone)) {
     // Its place in the queue goes to the next request at once (else the job, when the worker
     // takes it, finds it done and releases the flag itself).
     if (queue_->removeWaiting(job->ticket)) releaseCancelFlag(job->cancel);
-    Plan::Response res;
-    res.request_id = job->request_id;
-    res.status = Status::CANCELLED;
-    res.message = "cancelled while waiting in the queue: no planning was done";
-    res.path.header.frame_id = startup_.global_frame;
-    res.path.header.stamp = ros::Time::now();
+    Plan::Response res = responseWithoutPath(job->request_id, Status::CANCELLED,
+                                             "cancelled while waiting in the queue: no planning was done",
+                                             startup_.global_frame, ros::Time::now());
     logOutcome("plan_anytime", res);
     finishGoal(goal, std::move(res));
     goal_jobs_.erase(it);

@@ -4,7 +4,10 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <ros/node_handle.h>
@@ -62,6 +65,25 @@ struct PlannerParams {
   /// replaced 4000 x 4000 map resident for reuse. Read at start-up only (not reconfigurable).
   bool release_freed_memory = true;
   double marker_spacing = 0.5;        ///< metres between footprint markers along the path
+};
+
+/// The parameters in force, shared by the server's threads: a reconfiguration replaces them
+/// whole, and each reader takes a snapshot.
+class ParamsInForce {
+ public:
+  explicit ParamsInForce(const PlannerParams& params) : params_(std::make_shared<const PlannerParams>(params)) {}
+  std::shared_ptr<const PlannerParams> get() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return params_;
+  }
+  void set(std::shared_ptr<const PlannerParams> params) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    params_ = std::move(params);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<const PlannerParams> params_;
 };
 
 /// Reads the parameters under `pnh` (a private node handle). Throws std::invalid_argument
