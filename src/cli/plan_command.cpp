@@ -95,10 +95,7 @@ int planMain(int argc, char** argv) {
     std::cerr << "amha plan: give --eps or --w1, not both\n";
     return kExitUsage;
   }
-  pc.w1 = eps.value_or(w1.value_or(pc.w1));
-  pc.w2 = w2.value_or(pc.w2);
-  pc.dw1 = dw1.value_or(pc.dw1);
-  pc.dw2 = dw2.value_or(pc.dw2);
+  applyWeights({eps ? eps : w1, w2, dw1, dw2}, &pc);
   pc.schedule = schedule;
   if (weights_name && !parseWeightSchedule(*weights_name, &pc.weight_schedule)) {
     std::cerr << "amha plan: --weights must be certified or decrement, not '" << *weights_name << "'\n";

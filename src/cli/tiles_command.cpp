@@ -55,22 +55,15 @@ struct Options {
 
 PlannerConfig configFor(Algorithm a, const Options& o) {
   PlannerConfig c = defaultConfig(a);
-  switch (a) {
-    case Algorithm::kAmhaStar:
-    case Algorithm::kMhaStar:
-      c.w1 = o.w1; c.w2 = o.w2; c.dw1 = o.dw1; c.dw2 = o.dw2;
-      c.schedule = o.schedule;
-      break;
-    case Algorithm::kAraStar:
-      c.w1 = o.eps; c.dw1 = o.deps;
-      break;
-    case Algorithm::kWeightedAStar:
-      c.w1 = o.weight;
-      break;
-    case Algorithm::kAnaStar:
-    case Algorithm::kAStar:
-      break;
+  // Each algorithm has its own options: --eps/--deps for ARA*, --weight for weighted A*.
+  if (a == Algorithm::kAraStar) {
+    applyWeights({o.eps, {}, o.deps, {}}, &c);
+  } else if (a == Algorithm::kWeightedAStar) {
+    applyWeights({o.weight, {}, {}, {}}, &c);
+  } else {
+    applyWeights({o.w1, o.w2, o.dw1, o.dw2}, &c);
   }
+  if (algorithmSpecs(a).queue_schedule) c.schedule = o.schedule;
   return c;
 }
 

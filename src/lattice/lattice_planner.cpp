@@ -451,7 +451,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   if (!chooseGoal(g, reach_from, goal, goal_options, stop, std::chrono::steady_clock::now(), result, &t)) return result;
   result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
   // Algorithms that read only the anchor do not need the inadmissible grids.
-  const bool uses_inadmissible = (algorithm.algorithm == Algorithm::kAmhaStar || algorithm.algorithm == Algorithm::kMhaStar) &&
+  const bool uses_inadmissible = algorithmSpecs(algorithm.algorithm).inadmissible_heuristics &&
                                  algorithm.max_inadmissible > 0 && g.config().heuristics.num_inadmissible > 0;
   // Backward search runs from the goal to the start, with heuristics measured from the start.
   const bool backward = g.config().backward_search;

@@ -2,6 +2,7 @@
 #include "amha_planner/ros/planner_params.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <stdexcept>
@@ -269,30 +270,16 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
     c.stall_expansions = static_cast<std::uint64_t>(params.stall_expansions);
     c.stall_w1 = params.stall_w1;
   }
-  switch (algorithm) {
-    case amha::Algorithm::kAmhaStar:
-    case amha::Algorithm::kMhaStar:
-      if (params.w1 >= 0) c.w1 = params.w1;
-      if (params.w2 >= 0) c.w2 = params.w2;
-      if (params.dw1 >= 0) c.dw1 = params.dw1;
-      if (params.dw2 >= 0) c.dw2 = params.dw2;
-      c.schedule = params.queue_schedule;
-      if (w1 != 0.0) c.w1 = w1;
-      if (w2 != 0.0) c.w2 = w2;
-      break;
-    case amha::Algorithm::kAraStar:
-      if (params.eps >= 0) c.w1 = params.eps;
-      if (params.eps_decrement >= 0) c.dw1 = params.eps_decrement;
-      if (w1 != 0.0) c.w1 = w1;
-      break;
-    case amha::Algorithm::kWeightedAStar:
-      if (params.eps >= 0) c.w1 = params.eps;
-      if (w1 != 0.0) c.w1 = w1;
-      break;
-    case amha::Algorithm::kAnaStar:
-    case amha::Algorithm::kAStar:
-      break;  // no weights
-  }
+  // ~eps and ~eps_decrement are ARA*'s and weighted A*'s w1 and dw1; a negative parameter is
+  // unset, and the request's w1, w2 (0: unset) come last.
+  auto given = [](double v) { return v >= 0 ? std::optional<double>(v) : std::nullopt; };
+  const bool eps = algorithm == amha::Algorithm::kAraStar || algorithm == amha::Algorithm::kWeightedAStar;
+  amha::WeightChoice weights{given(eps ? params.eps : params.w1), given(params.w2),
+                             given(eps ? params.eps_decrement : params.dw1), given(params.dw2)};
+  if (w1 != 0.0) weights.w1 = w1;
+  if (w2 != 0.0) weights.w2 = w2;
+  amha::applyWeights(weights, &c);
+  if (amha::algorithmSpecs(algorithm).queue_schedule) c.schedule = params.queue_schedule;
   // The lattice offers num_inadmissible heuristics; the search may use them all.
   try {
     amha::makePlanner(c);  // the weights and schedule as a whole

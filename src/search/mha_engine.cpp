@@ -1,3 +1,32 @@
+// A-MHA*, Algorithm 1 of the paper (../shared/docs/a-mha-star-paper.tex; lines numbered as
+// there, without the end-procedure lines), and where each part is here:
+//
+//   lines  1-2   key(s, i) = g(s) + w1 h_i(s)         key(), keyAt() (+ (w - 1) b_i with bases)
+//   lines  3-15  Expand(s, i)                          expand()
+//          4       remove s from every OPEN_i          clearAllOpen()
+//          8-9     closed by the anchor: to INCONS     expand(): the kIncons flag
+//          11      insert/update s' in OPEN_0          pushOpen(kAnchor, ...)
+//          12-15   not in CLOSED_inad: OPEN_i if       admits(), pushOpen(i, ...)
+//                  key_i <= w2 key_0
+//   lines 16-24  ImprovePath()                         improvePath()
+//          17      while g(goal) > w2 OPEN_0.Min()     improvePath(): the goal test
+//          18-19   the inadmissible queue's turn       next_queue_ (round robin, or DTS)
+//          21, 24  CLOSED_inad, CLOSED_anch            the kClosedInad, kClosedAnch flags
+//   lines 25-40  Main()                                run()
+//          26-29   weights, g(start), OPEN_i           run()
+//          31-32   empty CLOSED and INCONS             clearClosed()
+//          34      publish the w1 w2 solution          report(), its certified bound from
+//                                                      collectOpen0AndIncons()
+//          35-36   stop at w1 = w2 = 1                 run()
+//          37      lower the weights                   nextWeights() (the paper's decrements,
+//                                                      or the certified schedule)
+//          38-40   INCONS into OPEN_0, OPEN_0 into     prepareNextIteration()
+//                  each OPEN_i, new keys
+//
+// Beyond the paper (each off with the paper's preset): publishing cheaper paths and tighter
+// certified bounds within an iteration (improvePath, publish_improvements), going on with a
+// larger w1 when the first iteration stalls (stall_expansions), and skipping iterations that
+// would stop at once (nextWeights).
 #include "mha_engine.h"
 
 #include <algorithm>
@@ -11,47 +40,37 @@ namespace amha {
 namespace detail {
 
 std::size_t MhaEngine::engineBytes() const {
-  std::size_t bytes = rec_.capacity() * sizeof(std::uint32_t) +
-                      members_.capacity() * sizeof(StateId);
+  std::size_t bytes = records_.bytes() + members_.capacity() * sizeof(StateId);
   for (const auto& q : open_) bytes += q.memoryBytes();
   return bytes;
 }
 
 void MhaEngine::growArrays(std::size_t cap) {
   // The new records are written by claim() when their ids come into use.
-  rec_.reserve(cap * stride_);  // exactly: resize() alone would double, past the memory cap
-  rec_.resize(cap * stride_);
+  records_.reserve(cap);
 }
 
 bool MhaEngine::claimSlow(StateId id) {
   const std::size_t from = used_;
   if (id >= capacity_ && !ensure(id)) return false;
   used_ = static_cast<std::size_t>(id) + 1;
-  std::memset(rec(static_cast<StateId>(from)), 0, (used_ - from) * stride_ * sizeof(std::uint32_t));
+  records_.zero(from, used_);
   return true;
 }
 
 void MhaEngine::resetArrays(std::size_t used) {
   for (auto& q : open_) q.clear();
-  if (used > 0) std::memset(rec_.data(), 0, used * stride_ * sizeof(std::uint32_t));
+  records_.zero(0, used);
 }
 
 SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
                             const SolutionCallback& on_solution) {
   const std::size_t nh = 1 + std::min(opt_.max_inadmissible, problem.numHeuristics() - 1);
   const bool bases = problem.hasInflationBases();
-  if (nh != nh_ || bases != bases_ || open_.size() != nh) {
+  if (records_.configure(nh, bases) || open_.size() != nh) {
     // A different heuristic count changes the record layout: start from empty records.
     nh_ = nh;
-    bases_ = bases;
-    hw_ = nh_ * (bases_ ? 2 : 1);
-    member_words_ = nh_ <= kFlagMembers ? 0 : (nh_ + 31) / 32;
-    member_word_ = member_words_ == 0 ? 3 : kHeaderWords + hw_;
-    member_shift_ = member_words_ == 0 ? kFlagBits : 0;
-    stride_ = kHeaderWords + hw_ + member_words_;
-    stride_ += stride_ % 2;
     open_.assign(nh_, OpenQueue());
-    rec_.clear();
     capacity_ = 0;
     used_ = 0;
   }
@@ -82,10 +101,10 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   goal_improved_ = false;
   incons_this_iteration_ = false;
   known_nominal_ = std::numeric_limits<double>::infinity();
-  known_lb_ = h(start, 0) == kInfiniteHeuristic ? 0 : static_cast<Cost>(h(start, 0));  // h0 is admissible
-  if (h(start, 0) != kInfiniteHeuristic) {
-    const QueueEntry k0 = key(start, 0);
-    pushOpen(0, k0);
+  known_lb_ = h(start, kAnchor) == kInfiniteHeuristic ? 0 : static_cast<Cost>(h(start, kAnchor));  // h0 is admissible
+  if (h(start, kAnchor) != kInfiniteHeuristic) {
+    const QueueEntry k0 = key(start, kAnchor);
+    pushOpen(kAnchor, k0);
     for (std::size_t i = 1; i < nh_; ++i) {
       const QueueEntry ki = key(start, i);
       if (admits(ki, k0.f) && pushOpen(i, ki) && dts_) schedule_.noteQueued(i, ki.h);
@@ -159,7 +178,7 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
     double min_key = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < members_.size(); ++i) {
       const StateId s = members_[i];
-      min_key = std::min(min_key, keyAt(s, 0, w1));
+      min_key = std::min(min_key, keyAt(s, kAnchor, w1));
     }
     return goal_g < kInfiniteCost && static_cast<double>(goal_g) <= w2 * min_key;
   };
@@ -183,8 +202,8 @@ void MhaEngine::generate(StateId s) {
   if (flags(s) & kGenerated) return;
   // Straight into the record: a copy of a few words through a buffer became a libc memmove
   // call (2 % of the time on Korf's 15-puzzles).
-  problem_->heuristics(s, rec(s) + kHeaderWords, nh_);
-  if (bases_) problem_->bases(s, rec(s) + kHeaderWords + nh_, nh_);
+  problem_->heuristics(s, records_.heuristicsOut(s), nh_);
+  if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), nh_);
   flags(s) |= kGenerated;
   ++generated_;
 }
@@ -194,8 +213,8 @@ bool MhaEngine::improvePath() {
   const std::size_t n_inad = nh_ - 1;
   for (;;) {
     if (stopped()) return false;  // e.g. a queue could not grow: OPEN is incomplete
-    if (!cleanTop(0)) return true;
-    const double min0 = open_[0].topKey();
+    if (!cleanTop(kAnchor)) return true;
+    const double min0 = open_[kAnchor].topKey();
     // Lines 17/19 of Algorithm 1: stop once g(goal) <= w2 * OPEN_0.Min(). An unreached goal's
     // g is a sentinel, not a cost: with a huge key it would pass the test (issue 22, item 1).
     const Cost goal_g = g(goal);
@@ -233,7 +252,7 @@ bool MhaEngine::improvePath() {
       if (!prepareNextIteration(opt_.stall_w1, w2_)) return false;
       continue;
     }
-    std::size_t q = 0;
+    std::size_t q = kAnchor;
     if (n_inad > 0) {
       const std::size_t i = next_queue_;
       if (cleanTop(i) && open_[i].topKey() <= w2_ * min0) q = i;
@@ -245,12 +264,12 @@ bool MhaEngine::improvePath() {
     // expand() changes a top, the hint is merely wasted). DTS thus draws before s's reward is
     // known: its evidence is one expansion old.
     if (n_inad > 0) next_queue_ = dts_ ? schedule_.pick() : next_queue_ % n_inad + 1;
-    prefetchTopRecord(0);
+    prefetchTopRecord(kAnchor);
     if (n_inad > 0) prefetchTopRecord(next_queue_);
     progress_ = false;
     expand(s, q);
     if (dts_ && q > 0) schedule_.reward(q, progress_);
-    flags(s) |= (q == 0) ? kClosedAnch : kClosedInad;
+    flags(s) |= (q == kAnchor) ? kClosedAnch : kClosedInad;
   }
 }
 
@@ -265,7 +284,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
   for (const Edge& e : succ_) {
     if (!claim(e.to)) return;  // memory cap: improvePath stops
   }
-  for (const Edge& e : succ_) __builtin_prefetch(rec(e.to), 1);
+  for (const Edge& e : succ_) records_.prefetch(e.to, true);
   for (const Edge& e : succ_) {
     const StateId t = e.to;
     generate(t);
@@ -280,10 +299,10 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
       incons_this_iteration_ = true;
       continue;
     }
-    if (h(t, 0) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
+    if (h(t, kAnchor) == kInfiniteHeuristic) continue;  // provably cannot reach the goal
     // The new g changes every key, so t's old entries are stale; push fresh ones.
-    const QueueEntry k0 = key(t, 0);
-    if (!pushOpen(0, k0)) return;
+    const QueueEntry k0 = key(t, kAnchor);
+    if (!pushOpen(kAnchor, k0)) return;
     if (f & kClosedInad) continue;
     for (std::size_t i = 1; i < nh_; ++i) {
       const QueueEntry ki = key(t, i);
@@ -312,10 +331,10 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   for (std::size_t k = 0; k < members_.size(); ++k) {
     if (interrupted(k)) return false;
     const StateId s = members_[k];
-    open_[0].appendUnordered(key(s, 0));
-    setInOpen(s, 0);
+    open_[kAnchor].appendUnordered(key(s, kAnchor));
+    setInOpen(s, kAnchor);
   }
-  open_[0].restoreOrder();
+  open_[kAnchor].restoreOrder();
   if (dts_) schedule_.resetProgress();
   // "Copy all states from OPEN_0 to OPEN_i": we re-apply Expand's admission test
   // (key_i <= w2 * key_0, h_i finite). The paper leaves this open. The bound proof only needs
@@ -327,7 +346,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
       if (interrupted(k)) return false;
       const StateId s = members_[k];
       const QueueEntry ki = key(s, i);
-      if (admits(ki, key(s, 0).f)) {
+      if (admits(ki, key(s, kAnchor).f)) {
         open_[i].appendUnordered(ki);
         setInOpen(s, i);
         if (dts_) schedule_.noteQueued(i, ki.h);
@@ -366,8 +385,8 @@ Cost MhaEngine::collectOpen0AndIncons() {
   Cost lb = kInfiniteCost;
   for (std::size_t i = 0; i < used_; ++i) {
     const StateId s = static_cast<StateId>(i);
-    if (!(flags(s) & kIncons) && !inOpen(s, 0)) continue;
-    const HeuristicValue h0 = h(s, 0);
+    if (!(flags(s) & kIncons) && !inOpen(s, kAnchor)) continue;
+    const HeuristicValue h0 = h(s, kAnchor);
     if (h0 == kInfiniteHeuristic) continue;
     lb = std::min(lb, g(s) + static_cast<Cost>(h0));
     members_.push_back(s);
@@ -385,8 +404,8 @@ void MhaEngine::checkInvariants() const {
       if (flags(s) & kClosedAnch) fail("closed state in an OPEN queue");
       if (i > 0) {
         if (flags(s) & kClosedInad) fail("CLOSED_inad state in OPEN_" + std::to_string(i));
-        if (!inOpen(s, 0)) fail("OPEN_i is not a subset of OPEN_0");
-        if (!admits(key(s, i), key(s, 0).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
+        if (!inOpen(s, kAnchor)) fail("OPEN_i is not a subset of OPEN_0");
+        if (!admits(key(s, i), key(s, kAnchor).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
       }
     });
     // Every state marked as a member has exactly one entry with its current key.

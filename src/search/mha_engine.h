@@ -12,6 +12,7 @@
 #include "open_queue.h"
 #include "realloc_vector.h"
 #include "search_base.h"
+#include "state_records.h"
 
 namespace amha {
 namespace detail {
@@ -44,8 +45,10 @@ class MhaEngine : public SearchBase {
   void setObserver(ExpansionObserver obs) { observer_ = std::move(obs); }
 
  private:
-  // kIncons marks the INCONS list: closed by the anchor, g lowered since (no separate list).
-  enum Flag : std::uint32_t { kGenerated = 1, kClosedAnch = 2, kClosedInad = 4, kIncons = 8 };
+  /// The anchor's queue and heuristic (h_0, admissible and consistent): OPEN_0 of Algorithm 1.
+  static constexpr std::size_t kAnchor = 0;
+  static constexpr std::uint32_t kGenerated = StateRecords::kGenerated, kClosedAnch = StateRecords::kClosedAnch,
+                                 kClosedInad = StateRecords::kClosedInad, kIncons = StateRecords::kIncons;
 
   bool improvePath();  // false if a limit stopped it
   void expand(StateId s, std::size_t queue);
@@ -60,44 +63,29 @@ class MhaEngine : public SearchBase {
   Cost collectOpen0AndIncons();
   void checkInvariants() const;
 
-  // Per-state data lives in one record per state (array of structs), so that touching a state
-  // costs one or two cache misses instead of one per array. Record layout in 32-bit words:
-  //   [0..1] kInfiniteCost - g (int64)  [2] ~parent  [3] flags  [4 .. 4+nh) h_i
-  //   [4+nh .. 4+2nh) the inflation bases b_i, if the problem has them (hw = 2 nh, else nh)
-  //   [4+hw .. 4+hw+mw) membership bits: bit i set <=> the state is in OPEN_i; with at most 28
-  //   queues mw = 0 and they are bits 4 + i of the flags word
-  // padded to an even stride so that g stays 8-byte aligned. g and parent are stored so that a
-  // new state's record (g = infinity, no parent, nothing set) is all zero bits: the records
-  // then need no initialising, and their pages no touching, until a state is generated.
-  // The queues hold entries lazily (see lazy_queue.h): an entry describes a member iff its
-  // state's bit is set and its key is the state's current key; anything else is stale and
-  // skipped.
-  static constexpr std::size_t kHeaderWords = 4;
-  std::uint32_t* rec(StateId s) { return rec_.data() + static_cast<std::size_t>(s) * stride_; }
-  const std::uint32_t* rec(StateId s) const {
-    return rec_.data() + static_cast<std::size_t>(s) * stride_;
-  }
-  Cost g(StateId s) const {
-    Cost v;
-    std::memcpy(&v, rec(s), sizeof v);
-    return kInfiniteCost - v;
-  }
-  void setG(StateId s, Cost g) {
-    const Cost v = kInfiniteCost - g;
-    std::memcpy(rec(s), &v, sizeof v);
-  }
-  void setParent(StateId s, StateId p) { rec(s)[2] = ~p; }
-  std::uint32_t& flags(StateId s) { return rec(s)[3]; }
-  std::uint32_t flags(StateId s) const { return rec(s)[3]; }
-  HeuristicValue h(StateId s, std::size_t i) const { return rec(s)[kHeaderWords + i]; }
-  // Queue i's key at weight w: g + w h_i, or with inflation bases b_i (after the h_i in the
-  // record; SearchProblem::hasInflationBases) g + h_i + (w - 1) b_i. For the anchor that is
+  // Per-state data (g, parent, flags, h_i, b_i, queue membership) lives in records_
+  // (state_records.h). The queues hold entries lazily (see lazy_queue.h): an entry describes a
+  // member iff its state's bit is set and its key is the state's current key; anything else is
+  // stale and skipped.
+  Cost g(StateId s) const { return records_.g(s); }
+  void setG(StateId s, Cost g) { records_.setG(s, g); }
+  void setParent(StateId s, StateId p) { records_.setParent(s, p); }
+  std::uint32_t& flags(StateId s) { return records_.flags(s); }
+  std::uint32_t flags(StateId s) const { return records_.flags(s); }
+  HeuristicValue h(StateId s, std::size_t i) const { return records_.h(s, i); }
+  bool inOpen(StateId s, std::size_t i) const { return records_.inOpen(s, i); }
+  void setInOpen(StateId s, std::size_t i) { records_.setInOpen(s, i); }
+  void clearInOpen(StateId s, std::size_t i) { records_.clearInOpen(s, i); }
+  void clearAllOpen(StateId s) { records_.clearAllOpen(s); }
+
+  // Queue i's key at weight w: g + w h_i, or with inflation bases b_i
+  // (SearchProblem::hasInflationBases) g + h_i + (w - 1) b_i. For the anchor that is
   // g + w h_w with h_w = (1 - 1/w) b_0 + h_0 / w, consistent and admissible, so every bound
   // holds with h_w as the anchor; the lower bounds still use h_0 itself.
   double keyAt(StateId s, std::size_t i, double w) const {
     const double g0 = static_cast<double>(g(s)), hi = static_cast<double>(h(s, i));
-    if (!bases_) return g0 + w * hi;
-    return g0 + hi + (w - 1.0) * static_cast<double>(rec(s)[kHeaderWords + nh_ + i]);
+    if (!records_.hasBases()) return g0 + w * hi;
+    return g0 + hi + (w - 1.0) * static_cast<double>(records_.base(s, i));
   }
   QueueEntry key(StateId s, std::size_t i) const {
     const HeuristicValue hv = h(s, i);
@@ -108,30 +96,8 @@ class MhaEngine : public SearchBase {
     return key_i.h != kInfiniteHeuristic && key_i.f <= w2_ * key0;
   }
 
-  // Queue membership.
-  // Up to kFlagMembers queues keep their bits in the flags word, above the flags (a word less
-  // per record); more have words of their own after the heuristic values.
-  // Queue i's bit is bit (i + member_shift_) % 32 of word member_word_ + (i + member_shift_) / 32.
-  static constexpr std::size_t kFlagBits = 4, kFlagMembers = 32 - kFlagBits;
-  std::uint32_t& memberWord(StateId s, std::size_t i) { return rec(s)[member_word_ + (i + member_shift_) / 32]; }
-  std::uint32_t memberWord(StateId s, std::size_t i) const { return rec(s)[member_word_ + (i + member_shift_) / 32]; }
-  std::uint32_t memberBit(std::size_t i) const { return 1u << ((i + member_shift_) % 32); }
-  bool inOpen(StateId s, std::size_t i) const { return (memberWord(s, i) & memberBit(i)) != 0; }
-  void setInOpen(StateId s, std::size_t i) { memberWord(s, i) |= memberBit(i); }
-  void clearInOpen(StateId s, std::size_t i) { memberWord(s, i) &= ~memberBit(i); }
-  void clearAllOpen(StateId s) {
-    if (member_words_ == 0) {
-      rec(s)[3] &= (1u << kFlagBits) - 1;
-      return;
-    }
-    std::uint32_t* m = rec(s) + kHeaderWords + hw_;
-    for (std::size_t w = 0; w < member_words_; ++w) m[w] = 0;
-  }
   void prefetchTopRecord(std::size_t i) const {
-    if (open_[i].empty()) return;
-    const std::uint32_t* r = rec(open_[i].topId());
-    __builtin_prefetch(r);
-    __builtin_prefetch(r + stride_ - 1);  // a record can straddle two cache lines
+    if (!open_[i].empty()) records_.prefetch(open_[i].topId());
   }
   /// An entry (key f, state id) of OPEN_i describes a member iff the state is marked as in
   /// OPEN_i and f is its current key.
@@ -168,18 +134,13 @@ class MhaEngine : public SearchBase {
   bool claimSlow(StateId id);
 
   Cost gOf(StateId s) const override { return g(s); }
-  StateId parentOf(StateId s) const override { return ~rec(s)[2]; }
+  StateId parentOf(StateId s) const override { return records_.parent(s); }
   std::size_t engineBytes() const override;
   void growArrays(std::size_t cap) override;
   void resetArrays(std::size_t used) override;
 
   MhaEngineOptions opt_;
   std::size_t nh_ = 1;            // heuristics in use, anchor included
-  bool bases_ = false;            // SearchProblem::hasInflationBases: b_i after the h_i
-  std::size_t hw_ = 1;            // record words of heuristic values: nh_, 2 nh_ with bases
-  std::size_t member_words_ = 1;  // words of membership bits per record (0: in the flags word)
-  std::size_t member_word_ = kHeaderWords + 1, member_shift_ = 0;  // where they are (memberWord)
-  std::size_t stride_ = kHeaderWords + 2;
   double w1_ = 1.0, w2_ = 1.0;
   bool small_keys_ = false;  // the problem allows bucket queues
   int iteration_ = 0;
@@ -193,9 +154,9 @@ class MhaEngine : public SearchBase {
   Cost known_lb_ = 0;           // the best proven lower bound on the optimal cost so far
   double known_nominal_ = 0.0;  // the last finished iteration's bound w1 w2 (inf before)
 
-  ReallocVector<std::uint32_t> rec_;  // the records
+  StateRecords records_;
   ReallocVector<StateId> members_;    // OPEN_0 u INCONS, from collectOpen0AndIncons()
-  std::vector<OpenQueue> open_;       // open_[0] is the anchor queue
+  std::vector<OpenQueue> open_;       // open_[kAnchor] is the anchor queue
   ExpansionObserver observer_;
 };
 

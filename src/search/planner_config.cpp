@@ -100,4 +100,34 @@ PlannerConfig defaultConfig(Algorithm algorithm) {
   return c;
 }
 
+AlgorithmSpecs algorithmSpecs(Algorithm algorithm) {
+  AlgorithmSpecs s;
+  switch (algorithm) {
+    case Algorithm::kAmhaStar:
+      s.inadmissible_heuristics = s.w1 = s.w2 = s.dw1 = s.dw2 = s.queue_schedule = true;
+      break;
+    case Algorithm::kMhaStar:
+      s.inadmissible_heuristics = s.w1 = s.w2 = s.queue_schedule = true;
+      break;
+    case Algorithm::kAraStar:
+      s.w1 = s.dw1 = true;
+      break;
+    case Algorithm::kWeightedAStar:
+      s.w1 = true;
+      break;
+    case Algorithm::kAnaStar:
+    case Algorithm::kAStar:
+      break;
+  }
+  return s;
+}
+
+void applyWeights(const WeightChoice& choice, PlannerConfig* config) {
+  const AlgorithmSpecs reads = algorithmSpecs(config->algorithm);
+  if (reads.w1 && choice.w1) config->w1 = *choice.w1;
+  if (reads.w2 && choice.w2) config->w2 = *choice.w2;
+  if (reads.dw1 && choice.dw1) config->dw1 = *choice.dw1;
+  if (reads.dw2 && choice.dw2) config->dw2 = *choice.dw2;
+}
+
 }  // namespace amha

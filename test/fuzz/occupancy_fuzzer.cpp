@@ -139,7 +139,7 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   if (!g.stateValid(s.x, s.y, s.heading) || !g.stateValid(t.x, t.y, t.heading)) return;
 
   // The same search as the facade's, on a problem whose state ids we can read back.
-  const bool inadmissible = (pc.algorithm == Algorithm::kAmhaStar || pc.algorithm == Algorithm::kMhaStar) && c.heuristics.num_inadmissible > 0;
+  const bool inadmissible = algorithmSpecs(pc.algorithm).inadmissible_heuristics && c.heuristics.num_inadmissible > 0;
   const bool backward = c.backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
   // With the facade's kinematic table too: it changes the heuristics and the keys.

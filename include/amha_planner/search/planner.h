@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -165,5 +166,26 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& config);
 
 /// Presets that reproduce the paper's settings for `algorithm` (documented in the README).
 PlannerConfig defaultConfig(Algorithm algorithm);
+
+/// What an algorithm reads of a PlannerConfig (in the spirit of OMPL's PlannerSpecs), so that
+/// domains and front ends ask instead of listing algorithms.
+struct AlgorithmSpecs {
+  bool inadmissible_heuristics = false;  ///< uses h_1..h_N (A-MHA*, MHA*)
+  bool w1 = false;   ///< w1: A-MHA*'s and MHA*'s, ARA*'s epsilon, weighted A*'s weight
+  bool w2 = false;   ///< A-MHA*, MHA*
+  bool dw1 = false;  ///< A-MHA*, ARA*
+  bool dw2 = false;  ///< A-MHA*
+  bool queue_schedule = false;  ///< the order of the inadmissible queues (A-MHA*, MHA*)
+};
+AlgorithmSpecs algorithmSpecs(Algorithm algorithm);
+
+/// Weights a user chose (from options, parameters or a request); an empty one keeps the
+/// configuration's.
+struct WeightChoice {
+  std::optional<double> w1, w2, dw1, dw2;
+};
+/// Sets in `config` those chosen weights that config->algorithm reads (algorithmSpecs); the
+/// others are ignored. Checked later by makePlanner.
+void applyWeights(const WeightChoice& choice, PlannerConfig* config);
 
 }  // namespace amha
