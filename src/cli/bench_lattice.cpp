@@ -292,7 +292,7 @@ int benchLatticeMain(int argc, char** argv) {
     if (!json_path.empty()) {
       nlohmann::json all = nlohmann::json::array();
       for (const Run& r : runs) {
-        nlohmann::json j = runToJson("query " + std::to_string(r.query + 1), r.algorithm, r.result.search, std::nullopt);
+        nlohmann::json j = runToJson("query " + std::to_string(r.query + 1), r.algorithm, r.result.search, r.result.searchSolutions(), std::nullopt);
         j["heuristic_seconds"] = r.result.heuristic_seconds;
         all.push_back(j);
       }

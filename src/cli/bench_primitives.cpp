@@ -179,7 +179,7 @@ int benchPrimitivesMain(int argc, char** argv) {
       Outcome& o = results[q][s];
       o.status = r.search.status;
       o.expansions = r.search.expansions;
-      o.seconds = r.goal_seconds + r.heuristic_seconds + r.search.elapsed_s;
+      o.seconds = r.totalSeconds();
       if (!r.solutions.empty()) {
         o.cost = r.solutions.back().search.cost / lattice::kCostUnitsPerMetre;
         o.path = r.solutions.back().poses;

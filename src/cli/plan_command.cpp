@@ -226,7 +226,7 @@ int planMain(int argc, char** argv) {
   std::printf("status %s: %zu solutions, %llu expansions, %zu states, %.1f MB, heuristics %.4f s, total %.4f s\n",
               statusName(r.search.status), r.solutions.size(), static_cast<unsigned long long>(r.search.expansions),
               r.search.peak_states, r.search.peak_memory_bytes / 1e6, r.heuristic_seconds,
-              r.escape_seconds + r.goal_seconds + r.heuristic_seconds + r.search.elapsed_s);
+              r.totalSeconds());
 
   // The result: the last solution, or with --smooth the smoothed path published last.
   std::vector<lattice::Pose2D> result_path;
@@ -246,7 +246,7 @@ int planMain(int argc, char** argv) {
   };
   try {
     if (!json_path.empty()) {
-      nlohmann::json run = runToJson(lo.map_file, algorithm, r.search, std::nullopt);
+      nlohmann::json run = runToJson(lo.map_file, algorithm, r.search, r.searchSolutions(), std::nullopt);
       run["path"] = poses_json(result_path);
       if (stream && !r.solutions.empty()) {
         run["smoothed"] = true;

@@ -26,8 +26,15 @@ nlohmann::json solutionToJson(const Solution& s) {
 
 nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
                          const SearchResult& result, std::optional<Cost> optimal_cost) {
+  std::vector<const Solution*> solutions;
+  for (const Solution& s : result.solutions) solutions.push_back(&s);
+  return runToJson(instance, algorithm, result, solutions, optimal_cost);
+}
+
+nlohmann::json runToJson(const std::string& instance, Algorithm algorithm, const SearchSummary& result,
+                         const std::vector<const Solution*>& solutions, std::optional<Cost> optimal_cost) {
   nlohmann::json sols = nlohmann::json::array();
-  for (const Solution& s : result.solutions) sols.push_back(solutionToJson(s));
+  for (const Solution* s : solutions) sols.push_back(solutionToJson(*s));
   return {{"instance", instance},
           {"algorithm", algorithmName(algorithm)},
           {"status", statusName(result.status)},

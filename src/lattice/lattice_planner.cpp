@@ -510,8 +510,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
   };
-  result.search = planner->search(problem, remaining, cb);
-  for (Solution& sol : result.search.solutions) lattice_path(sol.path);
+  // The callback has put every solution into result.solutions; the summary is what is left.
+  result.search = static_cast<const SearchSummary&>(planner->search(problem, remaining, cb));
   if (any_heading && !result.solutions.empty()) result.planned_goal->theta = result.solutions.back().poses.back().theta;
   if (escape) {
     result.escape_message = describeEscape(start_collision, *escape, start_options,

@@ -170,8 +170,7 @@ std::string noMapMessage(const std::string& map_topic, const std::string& refuse
 
 void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose2D>& best_poses,
                       const ResponseContext& context, Plan::Response* res) {
-  res->planning_time =
-      result.search.elapsed_s + result.heuristic_seconds + result.goal_seconds + result.escape_seconds;
+  res->planning_time = result.totalSeconds();
   res->expansions = result.search.expansions;
   if (result.error != lat::QueryError::kNone) {
     res->status = statusForQueryError(result.error);

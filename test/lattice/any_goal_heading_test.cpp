@@ -187,7 +187,7 @@ TEST(AnyGoalHeading, PlannerTakesTheHeadingThatFitsAndTheCheapest) {
   any.any_heading = true;
   r = planner.plan(start, across, any, astar, SearchLimits());
   ASSERT_EQ(r.error, QueryError::kNone) << r.message;
-  ASSERT_TRUE(r.search.hasSolution());
+  ASSERT_TRUE(r.hasSolution());
   ASSERT_TRUE(r.planned_goal.has_value());
   EXPECT_NEAR(std::abs(std::remainder(r.planned_goal->theta, M_PI)), 0.0, 1e-9) << "along the corridor";
   EXPECT_NEAR(r.solutions.back().poses.back().theta, r.planned_goal->theta, 1e-12);
@@ -197,8 +197,8 @@ TEST(AnyGoalHeading, PlannerTakesTheHeadingThatFitsAndTheCheapest) {
   const Pose2D behind{0.5, 1.0, M_PI}, ahead_goal{1.5, 1.0, M_PI};
   const PlanResult fixed = planner.plan(behind, ahead_goal, astar, SearchLimits());
   const PlanResult free_heading = planner.plan(behind, ahead_goal, any, astar, SearchLimits());
-  ASSERT_TRUE(fixed.search.hasSolution() && free_heading.search.hasSolution());
-  EXPECT_LT(free_heading.search.best().cost, fixed.search.best().cost);
+  ASSERT_TRUE(fixed.hasSolution() && free_heading.hasSolution());
+  EXPECT_LT(free_heading.best().search.cost, fixed.best().search.cost);
   // Every heading in collision at the goal: still refused, and said so.
   r = planner.plan(start, {3.0, 0.3, 0.0}, any, astar, SearchLimits());
   EXPECT_EQ(r.error, QueryError::kGoalInCollision);

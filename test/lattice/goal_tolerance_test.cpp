@@ -224,11 +224,11 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   const Pose2D free_goal = cellCentre(65, 12, 1.0);
   const PlanResult exact = planner.plan(start, free_goal, astar, SearchLimits());
   const PlanResult tolerant = planner.plan(start, free_goal, tolerance(0.5), astar, SearchLimits());
-  ASSERT_TRUE(exact.search.hasSolution());
-  ASSERT_TRUE(tolerant.search.hasSolution());
+  ASSERT_TRUE(exact.hasSolution());
+  ASSERT_TRUE(tolerant.hasSolution());
   EXPECT_FALSE(tolerant.goal_substituted);
   ASSERT_TRUE(tolerant.planned_goal.has_value());
-  EXPECT_EQ(tolerant.search.best().cost, exact.search.best().cost);
+  EXPECT_EQ(tolerant.best().search.cost, exact.best().search.cost);
   EXPECT_NEAR(tolerant.planned_goal->x, free_goal.x, 1e-9);
   EXPECT_NEAR(tolerant.planned_goal->y, free_goal.y, 1e-9);
 
@@ -239,7 +239,7 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   EXPECT_EQ(r.error, QueryError::kGoalInCollision);
   r = planner.plan(start, on_wall, tolerance(0.5), astar, SearchLimits());
   ASSERT_EQ(r.error, QueryError::kNone) << r.message;
-  ASSERT_TRUE(r.search.hasSolution());
+  ASSERT_TRUE(r.hasSolution());
   EXPECT_TRUE(r.goal_substituted);
   EXPECT_NE(r.message.find("nearest reachable collision-free pose"), std::string::npos) << r.message;
   ASSERT_TRUE(r.planned_goal.has_value());
@@ -256,10 +256,10 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   // outside; from a start inside, it is inside.
   const Pose2D inner_wall = cellCentre(31, 40, 0.0);
   r = planner.plan(start, inner_wall, tolerance(0.5), astar, SearchLimits());
-  ASSERT_TRUE(r.search.hasSolution()) << r.message;
+  ASSERT_TRUE(r.hasSolution()) << r.message;
   EXPECT_LT(r.planned_goal->x, 30 * 0.05);
   r = planner.plan(cellCentre(40, 40), inner_wall, tolerance(0.5), astar, SearchLimits());
-  ASSERT_TRUE(r.search.hasSolution()) << r.message;
+  ASSERT_TRUE(r.hasSolution()) << r.message;
   EXPECT_NEAR(r.planned_goal->x, cellCentre(34, 40).x, 1e-9);
 
   // Too small a tolerance: still in collision, and the message says why.
@@ -291,20 +291,20 @@ TEST(GoalToleranceTest, SubstitutePathsValidateAndAreOptimalForTheSubstitute) {
   LatticePlanner planner(hollowBoxMap(), boxRobot());
   const Pose2D start = cellCentre(10, 70, 0.0), goal = cellCentre(49, 35, 2.0);
   const PlanResult a = planner.plan(start, goal, tolerance(0.4), defaultConfig(Algorithm::kAStar), SearchLimits());
-  ASSERT_TRUE(a.search.hasSolution()) << a.message;
+  ASSERT_TRUE(a.hasSolution()) << a.message;
   ASSERT_TRUE(a.goal_substituted);
   const PlanResult direct = planner.plan(start, *a.planned_goal, defaultConfig(Algorithm::kAStar), SearchLimits());
-  ASSERT_TRUE(direct.search.hasSolution());
-  EXPECT_EQ(a.search.best().cost, direct.search.best().cost);
+  ASSERT_TRUE(direct.hasSolution());
+  EXPECT_EQ(a.best().search.cost, direct.best().search.cost);
   for (const Algorithm alg : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kAnaStar}) {
     const PlanResult r = planner.plan(start, goal, tolerance(0.4), defaultConfig(alg), SearchLimits());
-    ASSERT_TRUE(r.search.hasSolution()) << algorithmName(alg);
+    ASSERT_TRUE(r.hasSolution()) << algorithmName(alg);
     EXPECT_TRUE(r.goal_substituted);
     for (const LatticeSolution& s : r.solutions) {
       EXPECT_NEAR(s.poses.back().x, a.planned_goal->x, 1e-9) << algorithmName(alg);
       EXPECT_NEAR(s.poses.back().y, a.planned_goal->y, 1e-9) << algorithmName(alg);
       EXPECT_LE(static_cast<double>(s.search.cost),
-                s.search.certified_bound * static_cast<double>(direct.search.best().cost) * (1 + 1e-12))
+                s.search.certified_bound * static_cast<double>(direct.best().search.cost) * (1 + 1e-12))
           << algorithmName(alg);
     }
   }

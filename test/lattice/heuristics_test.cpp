@@ -283,10 +283,10 @@ TEST(AnchorTest, HeadingTermsCountedOnceSaveWeightedExpansions) {
     c.heuristics.inflate_heading_terms = inflate == 1;
     LatticePlanner planner(cubicle, c);
     const PlanResult r = planner.plan(env.start, env.goal, wastar, SearchLimits());
-    ASSERT_FALSE(r.search.solutions.empty());
-    expansions[inflate] = r.search.solutions.front().expansions;
-    costs[inflate] = r.search.solutions.front().cost;
-    EXPECT_LE(r.search.solutions.front().certified_bound, 3.0);
+    ASSERT_FALSE(r.solutions.empty());
+    expansions[inflate] = r.solutions.front().search.expansions;
+    costs[inflate] = r.solutions.front().search.cost;
+    EXPECT_LE(r.solutions.front().search.certified_bound, 3.0);
   }
   std::printf("[ weighted ] cubicle, epsilon 3: %llu expansions (cost %lld) with the heading terms once, %llu "
               "(cost %lld) inflated\n", static_cast<unsigned long long>(expansions[0]), static_cast<long long>(costs[0]),

@@ -325,9 +325,9 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
   const PlanResult plain = planner.plan(free_start, goal, defaultConfig(Algorithm::kAStar), seconds(5));
   const PlanResult tolerant =
       planner.plan(free_start, goal, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5));
-  ASSERT_TRUE(plain.search.hasSolution() && tolerant.search.hasSolution());
+  ASSERT_TRUE(plain.hasSolution() && tolerant.hasSolution());
   EXPECT_FALSE(tolerant.start_escaped);
-  EXPECT_EQ(tolerant.search.best().cost, plain.search.best().cost);
+  EXPECT_EQ(tolerant.best().search.cost, plain.best().search.cost);
   EXPECT_EQ(tolerant.solutions.back().escape_poses, 0u);
   EXPECT_TRUE(tolerant.escape_message.empty());
 

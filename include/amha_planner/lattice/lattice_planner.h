@@ -93,8 +93,9 @@ struct PlanResult {
   QueryError error = QueryError::kNone;
   /// Human-readable reason when error != kNone; when goal_substituted, what replaced the goal.
   std::string message;
-  SearchResult search;        ///< status and every solution (state ids)
-  std::vector<LatticeSolution> solutions;  ///< the same solutions, as poses
+  SearchSummary search;  ///< how the search ended (status, expansions, memory, its time)
+  /// Every improved solution in order (back() is the best): state ids, cost, bounds and poses.
+  std::vector<LatticeSolution> solutions;
   /// Seconds this call spent computing the goal's heuristic grids, or waiting for another call
   /// computing them (0 when they were cached);
   /// it counts against limits.time_limit_s.
@@ -118,6 +119,17 @@ struct PlanResult {
   /// last one left, and the bounds are relative to the optimal cost of the relaxed problem (the
   /// escape motions from the start allowed). Set once the escape is found.
   bool start_escaped = false;
+  bool hasSolution() const { return !solutions.empty(); }
+  const LatticeSolution& best() const { return solutions.back(); }
+  /// The search's view of the solutions (LatticeSolution::search), in order.
+  std::vector<const Solution*> searchSolutions() const {
+    std::vector<const Solution*> out;
+    for (const LatticeSolution& s : solutions) out.push_back(&s.search);
+    return out;
+  }
+  /// Seconds of the whole call: the escape, the goal choice, the heuristics and the search.
+  double totalSeconds() const { return escape_seconds + goal_seconds + heuristic_seconds + search.elapsed_s; }
+
   /// How the last solution left the start's collision (empty without an escape).
   std::string escape_message;
   /// Seconds spent finding the escapes (they count against limits.time_limit_s too).

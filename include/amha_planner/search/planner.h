@@ -139,13 +139,17 @@ struct Solution {
 
 using SolutionCallback = std::function<void(const Solution&)>;
 
-struct SearchResult {
+/// How a search ended and what it cost.
+struct SearchSummary {
   SearchStatus status = SearchStatus::kNoSolution;
-  std::vector<Solution> solutions;  ///< every reported solution, in order; back() is the best
   std::uint64_t expansions = 0;
   std::size_t peak_states = 0;      ///< states generated (with search data) at the end
   std::size_t peak_memory_bytes = 0;  ///< search arrays + domain, as counted for the cap
   double elapsed_s = 0.0;
+};
+
+struct SearchResult : SearchSummary {
+  std::vector<Solution> solutions;  ///< every reported solution, in order; back() is the best
 
   bool hasSolution() const { return !solutions.empty(); }
   const Solution& best() const { return solutions.back(); }
