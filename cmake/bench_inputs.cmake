@@ -16,11 +16,9 @@ target_include_directories(amha_bench_inputs_tests PRIVATE test/lattice)
 
 # The same seed writes the same files; another seed another map; the map loads as map_server's.
 add_test(NAME amha_map_random_is_seeded
-         COMMAND bash -c "d=$(mktemp -d) && for s in a:3 b:3 c:4; do \"$0\" map random --width 300 --height 200 --obstacles 0.15 --seed \${s#*:} --out $d/\${s%:*} >/dev/null || exit 1; done; cmp $d/a.pgm $d/b.pgm && cmp $d/a.yaml <(sed s/b.pgm/a.pgm/ $d/b.yaml) && ! cmp -s $d/a.pgm $d/c.pgm && \"$0\" bench queries --map $d/a.yaml --radius 0.2 --count 3 >/dev/null"
-                 $<TARGET_FILE:amha>)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/map_random_seeded_test.sh $<TARGET_FILE:amha>)
 
 # The same seed prints the same pairs, another seed others; every pair is at least
 # --min-distance apart (validity and connectivity: amha_bench_inputs_tests).
 add_test(NAME amha_bench_queries_seeded_and_far_apart
-         COMMAND bash -c "m=\"$1\"; q() { \"$0\" bench queries --map \"$m\" --radius 0.2 --count 8 --min-distance 15 --seed $1; }; a=$(q 1) && b=$(q 1) && c=$(q 2) || exit 1; echo \"$a\"; [ \"$a\" = \"$b\" ] && [ \"$a\" != \"$c\" ] && [ $(wc -l <<<\"$a\") -eq 8 ] && awk -F'[, ]' '{ d = sqrt(($4 - $1)^2 + ($5 - $2)^2); if (d < 15) { print \"too close: \" $0; bad = 1 } } END { exit bad }' <<<\"$a\""
-                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/bench_queries_seeded_test.sh $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)

@@ -55,8 +55,7 @@ set_source_files_properties(src/cli/bench_command.cpp PROPERTIES COMPILE_DEFINIT
 # The replanning benchmark on the bundled map: the repaired chain's grids must be repaired
 # after every update, and both chains must find the same first solutions (else exit 1).
 add_test(NAME amha_bench_replan_repairs_and_agrees
-         COMMAND bash -c "out=$(\"$0\" bench replan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --updates 4 --window 60 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'not repaired: 0; unsolved: 0; first solutions that differ: 0' <<<\"$out\""
-                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/bench_replan_test.sh $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
 # Bad option values are refused with a usage error naming the option, absurd robots and coarse
 # blocks up front, and the time budget holds during the planner's setup (issue 22).
@@ -67,27 +66,23 @@ add_test(NAME amha_plan_refusals
 
 # Contradicting flags are refused with a usage error (exit code 2), not silently resolved.
 add_test(NAME amha_plan_refuses_both_turn_flags
-         COMMAND bash -c "out=$(\"$0\" plan --map x.pgm --start 0,0,0 --goal 1,1,0 --turn-term --no-turn-term 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 2 ] && grep -q excludes <<<\"$out\""
-                 $<TARGET_FILE:amha>)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_turn_flags_test.sh $<TARGET_FILE:amha>)
 
 # A goal on a wall of the bundled map: refused (exit 6) without a goal tolerance, replaced by a
 # reachable free pose with one.
 add_test(NAME amha_plan_goal_tolerance
-         COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 24.45,6.45,1.57 --algorithm wastar --time-limit 5); \"$0\" \"\${args[@]}\" >/dev/null 2>&1; [ $? -eq 6 ] || exit 1; out=$(\"$0\" \"\${args[@]}\" --goal-tolerance 0.6 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'planning to the nearest reachable collision-free pose instead' <<<\"$out\""
-                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_goal_tolerance_test.sh $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
 # A start on a wall of the bundled map: refused (exit 5) without a start tolerance; with one the
 # path leaves the wall first and says how, and the JSON marks the escape; a tolerance too small
 # to reach a free pose is refused again, naming it.
 add_test(NAME amha_plan_start_tolerance
-         COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 24.45,6.45,1.57 --goal 17,55,0 --algorithm wastar --time-limit 5); \"$0\" \"\${args[@]}\" >/dev/null 2>&1; [ $? -eq 5 ] || exit 1; json=$(mktemp); out=$(\"$0\" \"\${args[@]}\" --start-tolerance 0.6 --json \"$json\" 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 0 ] && grep -q 'the path leaves it by' <<<\"$out\" && grep -q '\"start_escaped\": *true' \"$json\" || exit 1; rm -f \"$json\"; out=$(\"$0\" \"\${args[@]}\" --start-tolerance 0.05 2>&1); rc=$?; echo \"$out\"; [ $rc -eq 5 ] && grep -q 'within the start tolerance of 0.050 m' <<<\"$out\""
-                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_start_tolerance_test.sh $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
 # A free goal heading on the bundled map: A* proves a cheaper optimum than with the goal's own
 # heading (72719 against 73316 cost units, measured) and says where it ended.
 add_test(NAME amha_plan_any_goal_heading
-         COMMAND bash -c "args=(plan --map \"$1\" --radius 0.2 --turning-radius 0.5 --start 17,55,0 --goal 26,6,1.57 --algorithm astar --time-limit 20); fixed=$(\"$0\" \"\${args[@]}\" | grep -o 'cost=[0-9]*' | tail -1 | cut -d= -f2); free=$(\"$0\" \"\${args[@]}\" --any-goal-heading | grep -o 'cost=[0-9]*' | tail -1 | cut -d= -f2); echo \"fixed $fixed free $free\"; [ -n \"$free\" ] && [ -n \"$fixed\" ] && [ \"$free\" -lt \"$fixed\" ]"
-                 $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_any_goal_heading_test.sh $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
 
 # A costmap read as the server reads it (--lethal-threshold 100) and --smooth, end to end, and
 # the README's example on the bundled costmap.
