@@ -2,7 +2,7 @@
 
 #include <malloc.h>
 
-#include "amha_planner/search/memory_reuse.h"
+#include "amha_planner/search/detail/memory_reuse.h"
 
 namespace amha {
 namespace cli {

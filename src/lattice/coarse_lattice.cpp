@@ -1,5 +1,5 @@
 // The block abstraction of the lattice and its backward Dijkstra (see coarse_lattice.h).
-#include "amha_planner/lattice/coarse_lattice.h"
+#include "amha_planner/lattice/detail/coarse_lattice.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 #include <map>
 #include <tuple>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "distance_repair.h"
 #include "radix_heap.h"

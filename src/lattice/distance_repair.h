@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "radix_heap.h"
 
 namespace amha {

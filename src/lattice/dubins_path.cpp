@@ -1,6 +1,6 @@
 // Dubins paths by construction: the circles of the turns at both ends, the tangent lines (CSC)
 // or the third circle touching both (CCC) between them, then each candidate followed to its end.
-#include "amha_planner/lattice/dubins_path.h"
+#include "amha_planner/lattice/detail/dubins_path.h"
 
 #include <cmath>
 #include <limits>

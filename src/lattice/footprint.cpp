@@ -1,5 +1,5 @@
 // Polygon rasterisation, footprints and the cells swept along primitives.
-#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/detail/footprint.h"
 
 #include <algorithm>
 #include <array>

@@ -1,12 +1,12 @@
 // Goal tolerance: the nearest collision-free, reachable lattice state to an obstructed goal.
-#include "amha_planner/lattice/goal_tolerance.h"
+#include "amha_planner/lattice/detail/goal_tolerance.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <tuple>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 
 namespace amha {

@@ -1,4 +1,4 @@
-#include "amha_planner/lattice/grid_moves.h"
+#include "amha_planner/lattice/detail/grid_moves.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Dijkstra grids from the goal with a radix heap, several in parallel.
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 
 #include <algorithm>
 #include <atomic>

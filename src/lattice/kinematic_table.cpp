@@ -1,5 +1,5 @@
 // The obstacle-free kinematic cost-to-go tables (see kinematic_table.h for what and why).
-#include "amha_planner/lattice/kinematic_table.h"
+#include "amha_planner/lattice/detail/kinematic_table.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_config.h"
 #include "amha_planner/lattice/motion_primitives.h"
 #include "dial_queue.h"

@@ -8,7 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "amha_planner/lattice/grid_moves.h"
+#include "amha_planner/lattice/detail/grid_moves.h"
 
 namespace amha {
 namespace lattice {

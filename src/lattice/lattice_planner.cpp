@@ -10,11 +10,11 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "amha_planner/lattice/goal_tolerance.h"
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/goal_tolerance.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
-#include "amha_planner/lattice/lattice_problem.h"
-#include "amha_planner/lattice/start_escape.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
+#include "amha_planner/lattice/detail/start_escape.h"
 
 namespace amha {
 namespace lattice {

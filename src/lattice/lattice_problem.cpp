@@ -1,5 +1,5 @@
 // The lattice search problem: paged dense state index, successors, heuristics.
-#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "amha_planner/lattice/dubins_path.h"
-#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/detail/dubins_path.h"
+#include "amha_planner/lattice/detail/footprint.h"
 
 namespace amha {
 namespace lattice {

@@ -1,12 +1,12 @@
 // Start escape: a Dijkstra over the states in collision near the start (see start_escape.h).
-#include "amha_planner/lattice/start_escape.h"
+#include "amha_planner/lattice/detail/start_escape.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <queue>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 
 namespace amha {
 namespace lattice {

@@ -12,7 +12,7 @@
 
 #include <dynamic_reconfigure/Config.h>
 
-#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/detail/footprint.h"
 
 namespace amha_planner {
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "amha_planner/search/indexed_heap.h"
+#include "amha_planner/search/detail/indexed_heap.h"
 #include "search_base.h"
 
 namespace amha {

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "amha_planner/search/memory_reuse.h"
+#include "amha_planner/search/detail/memory_reuse.h"
 
 #if defined(__SANITIZE_THREAD__)
 #define AMHA_UNDER_TSAN 1

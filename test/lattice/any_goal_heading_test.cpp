@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/coarse_lattice.h"
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/coarse_lattice.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "path_validator.h"
 #include "test_support.h"
 

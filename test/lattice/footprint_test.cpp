@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/detail/footprint.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/motion_primitives.h"
 #include "path_validator.h"

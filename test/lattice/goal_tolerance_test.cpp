@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/goal_tolerance.h"
+#include "amha_planner/lattice/detail/goal_tolerance.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "test_support.h"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "test_support.h"

@@ -15,11 +15,11 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/heuristic_grids.h"
-#include "amha_planner/lattice/kinematic_table.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/kinematic_table.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "test_support.h"
 

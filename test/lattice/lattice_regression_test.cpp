@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/map_loaders.h"

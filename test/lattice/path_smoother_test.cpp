@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/dubins_path.h"
+#include "amha_planner/lattice/detail/dubins_path.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "amha_planner/lattice/path_smoother.h"

@@ -10,7 +10,7 @@
 
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/motion_primitives.h"
 #include "amha_planner/lattice/path_smoother.h"
 

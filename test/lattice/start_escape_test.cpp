@@ -9,12 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/path_smoother.h"
-#include "amha_planner/lattice/lattice_problem.h"
-#include "amha_planner/lattice/start_escape.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
+#include "amha_planner/lattice/detail/start_escape.h"
 #include "path_validator.h"
 #include "test_support.h"
 

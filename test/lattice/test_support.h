@@ -8,7 +8,7 @@
 
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 
 namespace amha {
 namespace lattice {

@@ -5,7 +5,7 @@
 #include <random>
 #include <set>
 
-#include "amha_planner/search/indexed_heap.h"
+#include "amha_planner/search/detail/indexed_heap.h"
 
 namespace amha {
 namespace {

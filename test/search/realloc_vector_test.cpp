@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "../../src/search/realloc_vector.h"
-#include "amha_planner/search/memory_reuse.h"
+#include "amha_planner/search/detail/memory_reuse.h"
 
 namespace amha {
 namespace detail {

@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "amha_planner/lattice/footprint.h"
-#include "amha_planner/lattice/kinematic_table.h"
+#include "amha_planner/lattice/detail/footprint.h"
+#include "amha_planner/lattice/detail/kinematic_table.h"
 #include "amha_planner/lattice/lattice_config.h"
 #include "amha_planner/lattice/motion_primitives.h"
 #include "amha_planner/search/stop_condition.h"

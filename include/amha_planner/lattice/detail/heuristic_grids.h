@@ -14,9 +14,9 @@
 #include <memory>
 #include <vector>
 
-#include "amha_planner/lattice/coarse_lattice.h"
-#include "amha_planner/lattice/footprint.h"
-#include "amha_planner/lattice/grid_moves.h"
+#include "amha_planner/lattice/detail/coarse_lattice.h"
+#include "amha_planner/lattice/detail/footprint.h"
+#include "amha_planner/lattice/detail/grid_moves.h"
 #include "amha_planner/search/stop_condition.h"
 #include "amha_planner/search/types.h"
 

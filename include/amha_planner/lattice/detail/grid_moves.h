@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "amha_planner/lattice/footprint.h"
+#include "amha_planner/lattice/detail/footprint.h"
 
 namespace amha {
 namespace lattice {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "amha_planner/lattice/lattice_graph.h"
-#include "amha_planner/lattice/lattice_problem.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/search/stop_condition.h"
 
 namespace amha {

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "amha_planner/lattice/heuristic_grids.h"
+#include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/search/problem.h"
 
