@@ -42,7 +42,8 @@ std::string machineDescription() {
   std::string line, model = "unknown CPU";
   int cores = 0;
   while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0 && model == "unknown CPU") model = line.substr(line.find(':') + 2);
+    if (line.rfind("model name", 0) == 0 && model == "unknown CPU")
+      model = line.substr(line.find(':') + 2);
     if (line.rfind("processor", 0) == 0) ++cores;
   }
   return model + ", " + std::to_string(cores) + " logical cores";
@@ -77,7 +78,8 @@ std::string sourceCommit() {
 namespace {
 
 void usage(std::ostream& out) {
-  out << "usage: amha bench <benchmark> [options]   (amha bench <benchmark> --help)\n\nbenchmarks:\n";
+  out << "usage: amha bench <benchmark> [options]   (amha bench <benchmark> "
+         "--help)\n\nbenchmarks:\n";
   for (const auto& b : benchmarkRegistry()) out << "  " << b.name << "  " << b.summary << "\n";
 }
 
@@ -100,7 +102,8 @@ int benchMain(int argc, char** argv) {
 
 }  // namespace
 
-AMHA_REGISTER_COMMAND("bench", "run a benchmark and write its figures (amha bench --help)", benchMain);
+AMHA_REGISTER_COMMAND("bench", "run a benchmark and write its figures (amha bench --help)",
+                      benchMain);
 
 }  // namespace cli
 }  // namespace amha

@@ -66,15 +66,19 @@ std::string gridTimingReport(const lattice::LatticeGraph& graph, int goals, unsi
       if (!builder.needed(static_cast<lattice::GridKind>(k))) continue;
       const auto t0 = std::chrono::steady_clock::now();
       builder.computeOne(static_cast<lattice::GridKind>(k), x, y);
-      single[k].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      single[k].push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
   }
   std::ostringstream out;
   char line[200];
-  std::snprintf(line, sizeof line, "heuristic tables for one goal, median of %zu goals: all (parallel) %.4f s wall, %.4f s CPU; alone:",
+  std::snprintf(line, sizeof line,
+                "heuristic tables for one goal, median of %zu goals: all (parallel) %.4f s wall, "
+                "%.4f s CPU; alone:",
                 qs.size(), median(all), median(all_cpu));
   out << line;
-  const char* names[lattice::kNumGridKinds] = {"anchor grid", "point robot", "inscribed opening", "circumscribed opening"};
+  const char* names[lattice::kNumGridKinds] = {"anchor grid", "point robot", "inscribed opening",
+                                               "circumscribed opening"};
   for (int k = 0; k < lattice::kNumGridKinds; ++k) {
     if (single[k].empty()) continue;
     std::snprintf(line, sizeof line, " %s %.4f s;", names[k], median(single[k]));
@@ -84,40 +88,50 @@ std::string gridTimingReport(const lattice::LatticeGraph& graph, int goals, unsi
   return out.str();
 }
 
-int gridTiming(const lattice::LatticeGraph& graph, int goals, unsigned seed, const std::string& command) {
-  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(), machineDescription().c_str(), sourceCommit().c_str(),
-              graph.width(), graph.height(), gridTimingReport(graph, goals, seed).c_str());
+int gridTiming(const lattice::LatticeGraph& graph, int goals, unsigned seed,
+               const std::string& command) {
+  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells\n%s", command.c_str(),
+              machineDescription().c_str(), sourceCommit().c_str(), graph.width(), graph.height(),
+              gridTimingReport(graph, goals, seed).c_str());
   return kExitOk;
 }
 
 int benchLatticeMain(int argc, char** argv) {
-  CLI::App app("Runs anytime algorithms on start/goal pairs on a map and writes the median cost and "
-               "certified bound vs time (PNG + CSV) and a summary into --out-dir.", argv[0]);
+  CLI::App app(
+      "Runs anytime algorithms on start/goal pairs on a map and writes the median cost and "
+      "certified bound vs time (PNG + CSV) and a summary into --out-dir.",
+      argv[0]);
   LatticeOptions lo;
   lo.addTo(app);
   int num_queries = 20;
   unsigned seed = 1;
   double min_distance = 0.0, time_limit = 5.0;
   std::vector<std::string> query_texts;
-  std::string algorithms_text = "amha,ara,ana,mha", out_dir = "docs/results", name = "lattice", json_path;
+  std::string algorithms_text = "amha,ara,ana,mha", out_dir = "docs/results", name = "lattice",
+              json_path;
   int grid_timing = 0;
   app.add_option("--queries", num_queries, "number of seeded random start/goal pairs (default 20)");
   app.add_option("--seed", seed, "seed of the random pairs (default 1)");
-  app.add_option("--min-distance", min_distance, "minimum start-goal distance of random pairs, m (default 0)");
-  app.add_option("--query", query_texts, "a given pair \"sx,sy,st;gx,gy,gt\" (repeatable; replaces random pairs)");
-  app.add_option("--algorithms", algorithms_text, "comma-separated algorithms (default amha,ara,ana,mha)");
+  app.add_option("--min-distance", min_distance,
+                 "minimum start-goal distance of random pairs, m (default 0)");
+  app.add_option("--query", query_texts,
+                 "a given pair \"sx,sy,st;gx,gy,gt\" (repeatable; replaces random pairs)");
+  app.add_option("--algorithms", algorithms_text,
+                 "comma-separated algorithms (default amha,ara,ana,mha)");
   app.add_option("--time-limit", time_limit, "seconds per run, heuristics included (default 5)");
   QueueSchedule schedule = QueueSchedule::kRoundRobin;
   cli::addScheduleOption(app, &schedule);
   std::string preset = "paper";
   app.add_option("--preset", preset,
-                 "weights: paper (each algorithm's paper preset, the paper's figures; default) or lattice (the "
+                 "weights: paper (each algorithm's paper preset, the paper's figures; default) or "
+                 "lattice (the "
                  "lattice planner's defaults, as amha plan and the server use them)")
       ->check(CLI::IsMember({"paper", "lattice"}));
   app.add_option("--out-dir", out_dir, "directory for the outputs (default docs/results)");
   app.add_option("--name", name, "file name prefix (default lattice)");
   app.add_option("--json", json_path, "also write every run (runs/solutions schema) to this file");
-  app.add_option("--grid-timing", grid_timing, "also time the heuristic grids for this many random goals");
+  app.add_option("--grid-timing", grid_timing,
+                 "also time the heuristic grids for this many random goals");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -136,8 +150,10 @@ int benchLatticeMain(int argc, char** argv) {
       algorithms.push_back(alg);
     }
   }
-  if (algorithms.empty() || !(time_limit > 0.0) || num_queries < 0 || (num_queries == 0 && grid_timing <= 0)) {
-    std::cerr << "amha bench lattice: need algorithms, a positive time limit and queries (or --queries 0 --grid-timing N)\n";
+  if (algorithms.empty() || !(time_limit > 0.0) || num_queries < 0 ||
+      (num_queries == 0 && grid_timing <= 0)) {
+    std::cerr << "amha bench lattice: need algorithms, a positive time limit and queries (or "
+                 "--queries 0 --grid-timing N)\n";
     return kExitUsage;
   }
   const bool grids_only = num_queries == 0 && query_texts.empty();
@@ -151,12 +167,16 @@ int benchLatticeMain(int argc, char** argv) {
     graph.reset(new lattice::LatticeGraph(loaded.map, loaded.config));
     for (const std::string& q : query_texts) {
       const std::size_t semi = q.find(';');
-      if (semi == std::string::npos) throw std::invalid_argument("--query '" + q + "' is not \"sx,sy,st;gx,gy,gt\"");
-      queries.push_back({parsePose(q.substr(0, semi), "--query start"), parsePose(q.substr(semi + 1), "--query goal")});
+      if (semi == std::string::npos)
+        throw std::invalid_argument("--query '" + q + "' is not \"sx,sy,st;gx,gy,gt\"");
+      queries.push_back({parsePose(q.substr(0, semi), "--query start"),
+                         parsePose(q.substr(semi + 1), "--query goal")});
     }
-    if (queries.empty() && !grids_only) queries = randomQueries(*graph, num_queries, seed, min_distance, true);
+    if (queries.empty() && !grids_only)
+      queries = randomQueries(*graph, num_queries, seed, min_distance, true);
     // One planner per algorithm: every query has a new goal, so no run reuses cached grids.
-    for (std::size_t a = 0; a < algorithms.size(); ++a) planners.emplace_back(new lattice::LatticePlanner(loaded.map, loaded.config));
+    for (std::size_t a = 0; a < algorithms.size(); ++a)
+      planners.emplace_back(new lattice::LatticePlanner(loaded.map, loaded.config));
   } catch (const lattice::LatticeError& e) {
     std::cerr << "amha bench lattice: " << e.what() << "\n";
     return exitCodeFor(e);
@@ -170,29 +190,35 @@ int benchLatticeMain(int argc, char** argv) {
   }
   if (grids_only) return gridTiming(*graph, grid_timing, seed, benchCommandLine(argc, argv));
   const std::string command = benchCommandLine(argc, argv);
-  std::printf("%s\n%zu queries, %zu algorithms, %.1f s each\n", command.c_str(), queries.size(), algorithms.size(), time_limit);
+  std::printf("%s\n%zu queries, %zu algorithms, %.1f s each\n", command.c_str(), queries.size(),
+              algorithms.size(), time_limit);
 
   std::vector<Run> runs;
   SearchLimits limits;
   limits.time_limit_s = time_limit;
   for (std::size_t q = 0; q < queries.size(); ++q) {
     for (std::size_t a = 0; a < algorithms.size(); ++a) {
-      PlannerConfig pc = preset == "lattice" ? lattice::defaultPlannerConfig(algorithms[a]) : defaultConfig(algorithms[a]);
+      PlannerConfig pc = preset == "lattice" ? lattice::defaultPlannerConfig(algorithms[a])
+                                             : defaultConfig(algorithms[a]);
       pc.schedule = schedule;
       Run r{q, algorithms[a], planners[a]->plan(queries[q].start, queries[q].goal, pc, limits)};
       if (r.result.error != lattice::QueryError::kNone) {
         std::cerr << "amha bench lattice: query " << q + 1 << ": " << r.result.message << "\n";
-        return r.result.error == lattice::QueryError::kStartInCollision || r.result.error == lattice::QueryError::kStartOutOfMap ||
+        return r.result.error == lattice::QueryError::kStartInCollision ||
+                       r.result.error == lattice::QueryError::kStartOutOfMap ||
                        r.result.error == lattice::QueryError::kStartNotFinite
                    ? kExitBadStart
                    : kExitBadGoal;
       }
       const auto& sols = r.result.solutions;
-      std::printf("query %zu/%zu %-6s %-15s solutions %2zu  first %8.4f s  last %8.4f s  bound %7.3f  expansions %llu\n", q + 1,
-                  queries.size(), algorithmName(algorithms[a]), statusName(r.result.search.status), sols.size(),
-                  sols.empty() ? kInf : sols.front().elapsed_total_s, sols.empty() ? kInf : sols.back().elapsed_total_s,
-                  sols.empty() ? kInf : sols.back().search.certified_bound,
-                  static_cast<unsigned long long>(r.result.search.expansions));
+      std::printf(
+          "query %zu/%zu %-6s %-15s solutions %2zu  first %8.4f s  last %8.4f s  bound %7.3f  "
+          "expansions %llu\n",
+          q + 1, queries.size(), algorithmName(algorithms[a]), statusName(r.result.search.status),
+          sols.size(), sols.empty() ? kInf : sols.front().elapsed_total_s,
+          sols.empty() ? kInf : sols.back().elapsed_total_s,
+          sols.empty() ? kInf : sols.back().search.certified_bound,
+          static_cast<unsigned long long>(r.result.search.expansions));
       std::fflush(stdout);
       runs.push_back(std::move(r));
     }
@@ -201,11 +227,13 @@ int benchLatticeMain(int argc, char** argv) {
   // Best known cost per query (over every algorithm), for normalising costs across queries.
   std::vector<double> best(queries.size(), kInf);
   for (const Run& r : runs)
-    for (const auto& s : r.result.solutions) best[r.query] = std::min(best[r.query], static_cast<double>(s.search.cost));
+    for (const auto& s : r.result.solutions)
+      best[r.query] = std::min(best[r.query], static_cast<double>(s.search.cost));
 
   const int points = 200;
   std::vector<double> times;
-  for (int i = 0; i < points; ++i) times.push_back(1e-3 * std::pow(time_limit / 1e-3, i / (points - 1.0)));
+  for (int i = 0; i < points; ++i)
+    times.push_back(1e-3 * std::pow(time_limit / 1e-3, i / (points - 1.0)));
   std::vector<PlotSeries> cost_series, bound_series;
   std::ostringstream csv;
   csv << "algorithm,time_s,median_cost_over_best,median_certified_bound,solved_fraction\n";
@@ -240,15 +268,21 @@ int benchLatticeMain(int argc, char** argv) {
 
   // Summary per algorithm.
   std::ostringstream sum;
-  sum << "command: " << command << "\nmachine: " << machineDescription() << "\ncommit: " << sourceCommit() << "\nmap: " << lo.map_file
-      << " (" << loaded.map->width << " x " << loaded.map->height << " cells of " << loaded.map->resolution << " m), "
-      << graph->primitives().num_headings << " headings, " << graph->primitives().primitives.size() << " primitives\n"
-      << "queries: " << queries.size() << (query_texts.empty() ? " seeded random (seed " + std::to_string(seed) + ", kept if weighted A* finds a path in 2 s)" : " given")
+  sum << "command: " << command << "\nmachine: " << machineDescription()
+      << "\ncommit: " << sourceCommit() << "\nmap: " << lo.map_file << " (" << loaded.map->width
+      << " x " << loaded.map->height << " cells of " << loaded.map->resolution << " m), "
+      << graph->primitives().num_headings << " headings, " << graph->primitives().primitives.size()
+      << " primitives\n"
+      << "queries: " << queries.size()
+      << (query_texts.empty() ? " seeded random (seed " + std::to_string(seed) +
+                                    ", kept if weighted A* finds a path in 2 s)"
+                              : " given")
       << ", time limit " << time_limit << " s per run, heuristics included\n\n";
   char row[256];
-  std::snprintf(row, sizeof row, "%-7s %7s %11s %11s %11s %11s %9s %13s\n", "algo", "solved", "t_first(s)", "cost_first",
-                "cost_final", "bound_final", "optimal", "t_optimal(s)");
-  sum << "medians over queries (cost relative to the best known for the query; inf = none)\n" << row;
+  std::snprintf(row, sizeof row, "%-7s %7s %11s %11s %11s %11s %9s %13s\n", "algo", "solved",
+                "t_first(s)", "cost_first", "cost_final", "bound_final", "optimal", "t_optimal(s)");
+  sum << "medians over queries (cost relative to the best known for the query; inf = none)\n"
+      << row;
   for (Algorithm alg : algorithms) {
     std::vector<double> t_first, c_first, c_final, b_final, t_opt;
     int solved = 0, optimal = 0;
@@ -264,9 +298,9 @@ int benchLatticeMain(int argc, char** argv) {
       optimal += opt;
       t_opt.push_back(opt ? s.back().elapsed_total_s : kInf);
     }
-    std::snprintf(row, sizeof row, "%-7s %3d/%-3zu %11.4f %11.4f %11.4f %11.4f %5d/%-3zu %13.4f\n", algorithmName(alg), solved,
-                  queries.size(), median(t_first), median(c_first), median(c_final), median(b_final), optimal, queries.size(),
-                  median(t_opt));
+    std::snprintf(row, sizeof row, "%-7s %3d/%-3zu %11.4f %11.4f %11.4f %11.4f %5d/%-3zu %13.4f\n",
+                  algorithmName(alg), solved, queries.size(), median(t_first), median(c_first),
+                  median(c_final), median(b_final), optimal, queries.size(), median(t_opt));
     sum << row;
   }
 
@@ -278,27 +312,32 @@ int benchLatticeMain(int argc, char** argv) {
     PlotOptions po;
     po.log_x = true;
     po.x_label = "time (s), heuristics included";
-    po.title = "median solution cost / best known cost (" + std::to_string(queries.size()) + " queries)";
+    po.title =
+        "median solution cost / best known cost (" + std::to_string(queries.size()) + " queries)";
     po.y_label = "cost / best known";
     writeLinePlot(base + "_cost.png", cost_series, po);
-    po.title = "median certified suboptimality bound (" + std::to_string(queries.size()) + " queries)";
+    po.title =
+        "median certified suboptimality bound (" + std::to_string(queries.size()) + " queries)";
     po.y_label = "certified bound";
     writeLinePlot(base + "_bound.png", bound_series, po);
     std::ofstream out_csv(base + ".csv");
     out_csv << csv.str();
     std::ofstream out_sum(base + "_summary.txt");
     out_sum << sum.str();
-    if (!out_csv || !out_sum) throw std::runtime_error("cannot write " + base + ".csv / _summary.txt");
+    if (!out_csv || !out_sum)
+      throw std::runtime_error("cannot write " + base + ".csv / _summary.txt");
     if (!json_path.empty()) {
       nlohmann::json all = nlohmann::json::array();
       for (const Run& r : runs) {
-        nlohmann::json j = runToJson("query " + std::to_string(r.query + 1), r.algorithm, r.result.search, r.result.searchSolutions(), std::nullopt);
+        nlohmann::json j = runToJson("query " + std::to_string(r.query + 1), r.algorithm,
+                                     r.result.search, r.result.searchSolutions(), std::nullopt);
         j["heuristic_seconds"] = r.result.heuristic_seconds;
         all.push_back(j);
       }
       writeRunsJson(json_path, all, {{"command", command}});
     }
-    std::printf("wrote %s_cost.png, %s_bound.png, %s.csv, %s_summary.txt\n", base.c_str(), base.c_str(), base.c_str(), base.c_str());
+    std::printf("wrote %s_cost.png, %s_bound.png, %s.csv, %s_summary.txt\n", base.c_str(),
+                base.c_str(), base.c_str(), base.c_str());
   } catch (const std::exception& e) {
     std::cerr << "amha bench lattice: " << e.what() << "\n";
     return kExitOutput;
@@ -308,7 +347,8 @@ int benchLatticeMain(int argc, char** argv) {
 
 }  // namespace
 
-AMHA_REGISTER_BENCHMARK("lattice", "anytime algorithms on a map: cost and bound vs time", benchLatticeMain);
+AMHA_REGISTER_BENCHMARK("lattice", "anytime algorithms on a map: cost and bound vs time",
+                        benchLatticeMain);
 
 }  // namespace cli
 }  // namespace amha

@@ -37,8 +37,8 @@ struct PrimitiveSetUnderTest {
 
 struct Outcome {
   SearchStatus status = SearchStatus::kNoSolution;
-  double cost = kInf;     // metres-equivalent: cost units / kCostUnitsPerMetre
-  double seconds = 0.0;   // heuristics included
+  double cost = kInf;    // metres-equivalent: cost units / kCostUnitsPerMetre
+  double seconds = 0.0;  // heuristics included
   std::uint64_t expansions = 0;
   std::vector<lattice::Pose2D> path;
   bool optimal() const { return status == SearchStatus::kProvenOptimal; }
@@ -71,8 +71,11 @@ std::string fixed(double v, int decimals) {
 }
 
 int benchPrimitivesMain(int argc, char** argv) {
-  CLI::App app("Plans the same queries to the optimum (A*) with several primitive sets and compares the optima, "
-               "the queries each set solves, primitives per heading and planning times.", argv[0]);
+  CLI::App app(
+      "Plans the same queries to the optimum (A*) with several primitive sets and compares the "
+      "optima, "
+      "the queries each set solves, primitives per heading and planning times.",
+      argv[0]);
   LatticeOptions lo;
   lo.addTo(app);
   std::vector<std::string> set_texts;
@@ -81,24 +84,34 @@ int benchPrimitivesMain(int argc, char** argv) {
   unsigned seed = 1;
   double min_distance = 0.0, time_limit = 300.0;
   app.add_option("--set", set_texts,
-                 "NAME=SPEC, repeatable: SPEC is near-minimal or legacy (generated with the generator options "
-                 "given) or a primitive file (.json Nav2, else .mprim)")->required();
-  app.add_option("--reference", reference, "the set the others' optima are divided by (default: the last --set)");
-  app.add_option("--queries", count, "seeded random queries, as `amha bench queries` draws them (default 20)");
+                 "NAME=SPEC, repeatable: SPEC is near-minimal or legacy (generated with the "
+                 "generator options "
+                 "given) or a primitive file (.json Nav2, else .mprim)")
+      ->required();
+  app.add_option("--reference", reference,
+                 "the set the others' optima are divided by (default: the last --set)");
+  app.add_option("--queries", count,
+                 "seeded random queries, as `amha bench queries` draws them (default 20)");
   app.add_option("--seed", seed, "their seed (default 1)");
-  app.add_option("--min-distance", min_distance, "their minimum start-goal distance, m (default 0)");
-  app.add_option("--queries-json", queries_json, "read the queries from an `amha bench queries --json` file instead");
-  app.add_option("--time-limit", time_limit, "seconds per A* run, heuristics included (default 300)");
-  app.add_option("--out", out_base, "write OUT.txt (summary), OUT.csv (per query and set) and OUT.png (the paths)");
-  app.add_option("--image-query", image_query,
-                 "query (1-based) to draw (default: the one whose optima differ most between the sets)");
+  app.add_option("--min-distance", min_distance,
+                 "their minimum start-goal distance, m (default 0)");
+  app.add_option("--queries-json", queries_json,
+                 "read the queries from an `amha bench queries --json` file instead");
+  app.add_option("--time-limit", time_limit,
+                 "seconds per A* run, heuristics included (default 300)");
+  app.add_option("--out", out_base,
+                 "write OUT.txt (summary), OUT.csv (per query and set) and OUT.png (the paths)");
+  app.add_option(
+      "--image-query", image_query,
+      "query (1-based) to draw (default: the one whose optima differ most between the sets)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   if (!(time_limit > 0.0) || !std::isfinite(time_limit) || count < 1 || !(min_distance >= 0.0)) {
-    std::cerr << "amha bench primitives: --time-limit must be > 0, --queries >= 1, --min-distance >= 0\n";
+    std::cerr
+        << "amha bench primitives: --time-limit must be > 0, --queries >= 1, --min-distance >= 0\n";
     return kExitUsage;
   }
 
@@ -149,9 +162,12 @@ int benchPrimitivesMain(int argc, char** argv) {
   }
   std::size_t ref = sets.size() - 1;
   if (!reference.empty()) {
-    const auto it = std::find_if(sets.begin(), sets.end(), [&](const PrimitiveSetUnderTest& s) { return s.name == reference; });
+    const auto it = std::find_if(sets.begin(), sets.end(), [&](const PrimitiveSetUnderTest& s) {
+      return s.name == reference;
+    });
     if (it == sets.end()) {
-      std::cerr << "amha bench primitives: --reference " << reference << " is none of the --set names\n";
+      std::cerr << "amha bench primitives: --reference " << reference
+                << " is none of the --set names\n";
       return kExitUsage;
     }
     ref = static_cast<std::size_t>(it - sets.begin());
@@ -162,8 +178,8 @@ int benchPrimitivesMain(int argc, char** argv) {
   }
 
   const std::string command = benchCommandLine(argc, argv);
-  std::printf("%s\n%zu queries, %zu primitive sets, A* with a %.0f s limit per run\n", command.c_str(), queries.size(),
-              sets.size(), time_limit);
+  std::printf("%s\n%zu queries, %zu primitive sets, A* with a %.0f s limit per run\n",
+              command.c_str(), queries.size(), sets.size(), time_limit);
   std::vector<std::vector<Outcome>> results(queries.size(), std::vector<Outcome>(sets.size()));
   std::ostringstream csv;
   csv << "query,set,status,cost_m,seconds,expansions\n";
@@ -171,9 +187,11 @@ int benchPrimitivesMain(int argc, char** argv) {
   limits.time_limit_s = time_limit;
   for (std::size_t q = 0; q < queries.size(); ++q) {
     for (std::size_t s = 0; s < sets.size(); ++s) {
-      const lattice::PlanResult r = sets[s].planner->plan(queries[q].start, queries[q].goal, defaultConfig(Algorithm::kAStar), limits);
+      const lattice::PlanResult r = sets[s].planner->plan(queries[q].start, queries[q].goal,
+                                                          defaultConfig(Algorithm::kAStar), limits);
       if (r.error != lattice::QueryError::kNone) {
-        std::cerr << "amha bench primitives: query " << q + 1 << " (" << sets[s].name << "): " << r.message << "\n";
+        std::cerr << "amha bench primitives: query " << q + 1 << " (" << sets[s].name
+                  << "): " << r.message << "\n";
         return kExitBadInstances;
       }
       Outcome& o = results[q][s];
@@ -184,26 +202,31 @@ int benchPrimitivesMain(int argc, char** argv) {
         o.cost = r.solutions.back().search.cost / lattice::kCostUnitsPerMetre;
         o.path = r.solutions.back().poses;
       }
-      std::printf("query %2zu %-14s %-15s cost %10s  %8.3f s  %10llu expansions\n", q + 1, sets[s].name.c_str(),
-                  statusName(o.status), fixed(o.cost, 3).c_str(), o.seconds, static_cast<unsigned long long>(o.expansions));
+      std::printf("query %2zu %-14s %-15s cost %10s  %8.3f s  %10llu expansions\n", q + 1,
+                  sets[s].name.c_str(), statusName(o.status), fixed(o.cost, 3).c_str(), o.seconds,
+                  static_cast<unsigned long long>(o.expansions));
       std::fflush(stdout);
-      csv << q + 1 << "," << sets[s].name << "," << statusName(o.status) << "," << fixed(o.cost, 4) << "," << fixed(o.seconds, 4)
-          << "," << o.expansions << "\n";
+      csv << q + 1 << "," << sets[s].name << "," << statusName(o.status) << "," << fixed(o.cost, 4)
+          << "," << fixed(o.seconds, 4) << "," << o.expansions << "\n";
     }
   }
 
   std::ostringstream sum;
-  sum << "command: " << command << "\nmachine: " << machineDescription() << " (shared: wall times vary)\ncommit: "
-      << sourceCommit() << "\nmap: " << lo.map_file << " (" << loaded.map->width << " x " << loaded.map->height
-      << " cells of " << loaded.map->resolution << " m); " << queries.size() << " queries"
-      << (queries_json.empty() ? " (seed " + std::to_string(seed) + ", min distance " + fixed(min_distance, 1) + " m)"
+  sum << "command: " << command << "\nmachine: " << machineDescription()
+      << " (shared: wall times vary)\ncommit: " << sourceCommit() << "\nmap: " << lo.map_file
+      << " (" << loaded.map->width << " x " << loaded.map->height << " cells of "
+      << loaded.map->resolution << " m); " << queries.size() << " queries"
+      << (queries_json.empty() ? " (seed " + std::to_string(seed) + ", min distance " +
+                                     fixed(min_distance, 1) + " m)"
                                : " from " + queries_json)
       << "; A*, " << time_limit << " s limit per run; costs in metres of free straight driving\n\n";
   char row[320];
-  std::snprintf(row, sizeof row, "%-14s %10s %9s %7s %9s %14s %14s %14s %12s %12s\n", "set", "primitives", "/heading",
-                "optimal", "unsolved", "median ratio", "min ratio", "max ratio", "median s", "median exp.");
+  std::snprintf(row, sizeof row, "%-14s %10s %9s %7s %9s %14s %14s %14s %12s %12s\n", "set",
+                "primitives", "/heading", "optimal", "unsolved", "median ratio", "min ratio",
+                "max ratio", "median s", "median exp.");
   sum << "optimum ratio: this set's optimum / " << sets[ref].name
-      << "'s, over the queries both solve to proven optimality; unsolved: proven to have no path\n" << row;
+      << "'s, over the queries both solve to proven optimality; unsolved: proven to have no path\n"
+      << row;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     std::vector<double> ratios, seconds, expansions;
     int optimal = 0, unsolved = 0;
@@ -217,12 +240,15 @@ int benchPrimitivesMain(int argc, char** argv) {
     }
     const std::string per = sets[s].min_per_heading == sets[s].max_per_heading
                                 ? std::to_string(sets[s].min_per_heading)
-                                : std::to_string(sets[s].min_per_heading) + "-" + std::to_string(sets[s].max_per_heading);
-    std::snprintf(row, sizeof row, "%-14s %10zu %9s %3d/%-3zu %9d %14s %14s %14s %12s %12.0f\n", sets[s].name.c_str(),
-                  sets[s].primitives, per.c_str(), optimal, queries.size(), unsolved, fixed(median(ratios), 4).c_str(),
-                  ratios.empty() ? "-" : fixed(*std::min_element(ratios.begin(), ratios.end()), 4).c_str(),
-                  ratios.empty() ? "-" : fixed(*std::max_element(ratios.begin(), ratios.end()), 4).c_str(),
-                  fixed(median(seconds), 3).c_str(), median(expansions));
+                                : std::to_string(sets[s].min_per_heading) + "-" +
+                                      std::to_string(sets[s].max_per_heading);
+    std::snprintf(
+        row, sizeof row, "%-14s %10zu %9s %3d/%-3zu %9d %14s %14s %14s %12s %12.0f\n",
+        sets[s].name.c_str(), sets[s].primitives, per.c_str(), optimal, queries.size(), unsolved,
+        fixed(median(ratios), 4).c_str(),
+        ratios.empty() ? "-" : fixed(*std::min_element(ratios.begin(), ratios.end()), 4).c_str(),
+        ratios.empty() ? "-" : fixed(*std::max_element(ratios.begin(), ratios.end()), 4).c_str(),
+        fixed(median(seconds), 3).c_str(), median(expansions));
     sum << row;
   }
   // Queries one set proves unsolvable that another solves.
@@ -232,7 +258,8 @@ int benchPrimitivesMain(int argc, char** argv) {
     for (std::size_t a = 0; a < sets.size(); ++a) {
       for (std::size_t b = 0; b < sets.size(); ++b) {
         if (results[q][a].proven_unsolvable() && std::isfinite(results[q][b].cost)) {
-          sum << "query " << q + 1 << ": no path with " << sets[a].name << ", a path with " << sets[b].name << "\n";
+          sum << "query " << q + 1 << ": no path with " << sets[a].name << ", a path with "
+              << sets[b].name << "\n";
           ++disagreements;
         }
       }
@@ -257,10 +284,12 @@ int benchPrimitivesMain(int argc, char** argv) {
     }
   }
   const Query& shown = queries[pick];
-  sum << "\npicture: query " << pick + 1 << " (" << fixed(shown.start.x, 2) << ", " << fixed(shown.start.y, 2) << ", "
-      << fixed(shown.start.theta, 3) << ") -> (" << fixed(shown.goal.x, 2) << ", " << fixed(shown.goal.y, 2) << ", "
+  sum << "\npicture: query " << pick + 1 << " (" << fixed(shown.start.x, 2) << ", "
+      << fixed(shown.start.y, 2) << ", " << fixed(shown.start.theta, 3) << ") -> ("
+      << fixed(shown.goal.x, 2) << ", " << fixed(shown.goal.y, 2) << ", "
       << fixed(shown.goal.theta, 3) << "):";
-  for (std::size_t s = 0; s < sets.size(); ++s) sum << " " << sets[s].name << " " << fixed(results[pick][s].cost, 3) << " m";
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    sum << " " << sets[s].name << " " << fixed(results[pick][s].cost, 3) << " m";
   sum << "\n";
   std::cout << "\n" << sum.str();
 
@@ -270,13 +299,16 @@ int benchPrimitivesMain(int argc, char** argv) {
       txt << sum.str();
       table << csv.str();
       if (!txt || !table) throw std::runtime_error("cannot write " + out_base + ".txt / .csv");
-      static const std::array<int, 3> colours[] = {{40, 40, 230}, {200, 120, 0}, {0, 160, 0}, {160, 0, 160}, {0, 140, 220}};
+      static const std::array<int, 3> colours[] = {
+          {40, 40, 230}, {200, 120, 0}, {0, 160, 0}, {160, 0, 160}, {0, 140, 220}};
       std::vector<LabelledPath> paths;
       for (std::size_t s = 0; s < sets.size(); ++s) {
-        paths.push_back({sets[s].name + " " + fixed(results[pick][s].cost, 2) + " m", colours[s % 5], results[pick][s].path});
+        paths.push_back({sets[s].name + " " + fixed(results[pick][s].cost, 2) + " m",
+                         colours[s % 5], results[pick][s].path});
       }
       writePathsImage(out_base + ".png", *loaded.map, paths, shown.start, shown.goal);
-      std::printf("wrote %s.txt, %s.csv, %s.png\n", out_base.c_str(), out_base.c_str(), out_base.c_str());
+      std::printf("wrote %s.txt, %s.csv, %s.png\n", out_base.c_str(), out_base.c_str(),
+                  out_base.c_str());
     } catch (const std::exception& e) {
       std::cerr << "amha bench primitives: " << e.what() << "\n";
       return kExitOutput;
@@ -287,7 +319,8 @@ int benchPrimitivesMain(int argc, char** argv) {
 
 }  // namespace
 
-AMHA_REGISTER_BENCHMARK("primitives", "optimal paths with several primitive sets on the same queries (A*)",
+AMHA_REGISTER_BENCHMARK("primitives",
+                        "optimal paths with several primitive sets on the same queries (A*)",
                         benchPrimitivesMain);
 
 }  // namespace cli

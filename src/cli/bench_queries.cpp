@@ -20,9 +20,13 @@ namespace cli {
 namespace {
 
 int benchQueriesMain(int argc, char** argv) {
-  CLI::App app("Prints seeded random start/goal pairs, one per line as \"sx,sy,st gx,gy,gt\" (map frame: m, m, "
-               "rad): collision-free for the robot, in one connected region of the cells its centre may occupy, "
-               "at least --min-distance apart.", argv[0]);
+  CLI::App app(
+      "Prints seeded random start/goal pairs, one per line as \"sx,sy,st gx,gy,gt\" (map frame: m, "
+      "m, "
+      "rad): collision-free for the robot, in one connected region of the cells its centre may "
+      "occupy, "
+      "at least --min-distance apart.",
+      argv[0]);
   LatticeOptions lo;
   lo.addTo(app);
   int count = 20;
@@ -31,8 +35,10 @@ int benchQueriesMain(int argc, char** argv) {
   std::string json_path;
   app.add_option("--count", count, "number of pairs (default 20)");
   app.add_option("--seed", seed, "random seed (default 1)");
-  app.add_option("--min-distance", min_distance, "minimum straight-line start-goal distance, m (default 0)");
-  app.add_option("--json", json_path, "also write {\"queries\": [{\"start\": [x, y, theta], \"goal\": [...]}, ...]}");
+  app.add_option("--min-distance", min_distance,
+                 "minimum straight-line start-goal distance, m (default 0)");
+  app.add_option("--json", json_path,
+                 "also write {\"queries\": [{\"start\": [x, y, theta], \"goal\": [...]}, ...]}");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,12 +67,16 @@ int benchQueriesMain(int argc, char** argv) {
   }
   nlohmann::json list = nlohmann::json::array();
   for (const Query& q : queries) {
-    std::printf("%.4f,%.4f,%.6f %.4f,%.4f,%.6f\n", q.start.x, q.start.y, q.start.theta, q.goal.x, q.goal.y, q.goal.theta);
-    list.push_back({{"start", {q.start.x, q.start.y, q.start.theta}}, {"goal", {q.goal.x, q.goal.y, q.goal.theta}}});
+    std::printf("%.4f,%.4f,%.6f %.4f,%.4f,%.6f\n", q.start.x, q.start.y, q.start.theta, q.goal.x,
+                q.goal.y, q.goal.theta);
+    list.push_back({{"start", {q.start.x, q.start.y, q.start.theta}},
+                    {"goal", {q.goal.x, q.goal.y, q.goal.theta}}});
   }
   if (!json_path.empty()) {
     std::ofstream out(json_path);
-    out << nlohmann::json{{"command", benchCommandLine(argc, argv)}, {"seed", seed}, {"min_distance", min_distance},
+    out << nlohmann::json{{"command", benchCommandLine(argc, argv)},
+                          {"seed", seed},
+                          {"min_distance", min_distance},
                           {"queries", list}}
                .dump(1)
         << "\n";
@@ -81,8 +91,9 @@ int benchQueriesMain(int argc, char** argv) {
 
 }  // namespace
 
-AMHA_REGISTER_BENCHMARK("queries", "seeded random start/goal pairs for a map and robot (to run other planners on)",
-                        benchQueriesMain);
+AMHA_REGISTER_BENCHMARK(
+    "queries", "seeded random start/goal pairs for a map and robot (to run other planners on)",
+    benchQueriesMain);
 
 }  // namespace cli
 }  // namespace amha

@@ -55,7 +55,8 @@ Replan planOnce(LatticePlanner& planner, const lattice::Pose2D& start, const lat
     }
     cancel = true;
   };
-  const lattice::PlanResult result = planner.plan(start, goal, lattice::defaultPlannerConfig(algorithm), limits, on_solution);
+  const lattice::PlanResult result =
+      planner.plan(start, goal, lattice::defaultPlannerConfig(algorithm), limits, on_solution);
   if (result.error != lattice::QueryError::kNone) throw std::invalid_argument(result.message);
   r.heuristic_s = result.heuristic_seconds;
   r.source = result.heuristic_source;
@@ -64,16 +65,19 @@ Replan planOnce(LatticePlanner& planner, const lattice::Pose2D& start, const lat
 
 // A window of the map changed: "same" writes the cells' own values back (a costmap that
 // republishes an unchanged area), "obstacle" puts a lethal block in the middle of the window.
-CellRect randomUpdate(std::mt19937& rng, const GridMap& map, GridMap& next, int window, bool obstacle,
-                      const std::vector<std::array<int, 2>>& keep_clear, int clear_radius) {
-  std::uniform_int_distribution<int> px(0, std::max(0, map.width - window)), py(0, std::max(0, map.height - window));
+CellRect randomUpdate(std::mt19937& rng, const GridMap& map, GridMap& next, int window,
+                      bool obstacle, const std::vector<std::array<int, 2>>& keep_clear,
+                      int clear_radius) {
+  std::uniform_int_distribution<int> px(0, std::max(0, map.width - window)),
+      py(0, std::max(0, map.height - window));
   for (int tries = 0;; ++tries) {
     const CellRect r{px(rng), py(rng), 0, 0};
-    const CellRect w{r.x0, r.y0, std::min(map.width, r.x0 + window), std::min(map.height, r.y0 + window)};
+    const CellRect w{r.x0, r.y0, std::min(map.width, r.x0 + window),
+                     std::min(map.height, r.y0 + window)};
     bool near = false;
     for (const auto& c : keep_clear) {
-      near = near || (c[0] >= w.x0 - clear_radius && c[0] < w.x1 + clear_radius && c[1] >= w.y0 - clear_radius &&
-                      c[1] < w.y1 + clear_radius);
+      near = near || (c[0] >= w.x0 - clear_radius && c[0] < w.x1 + clear_radius &&
+                      c[1] >= w.y0 - clear_radius && c[1] < w.y1 + clear_radius);
     }
     if (near && tries < 1000) continue;
     if (obstacle) {
@@ -90,8 +94,11 @@ CellRect randomUpdate(std::mt19937& rng, const GridMap& map, GridMap& next, int 
 }
 
 int benchReplanMain(int argc, char** argv) {
-  CLI::App app("Plans to one goal after each of a series of map updates, with the previous planner's heuristic "
-               "grids repaired and computed again, and reports the time each takes.", argv[0]);
+  CLI::App app(
+      "Plans to one goal after each of a series of map updates, with the previous planner's "
+      "heuristic "
+      "grids repaired and computed again, and reports the time each takes.",
+      argv[0]);
   LatticeOptions lo;
   lo.addTo(app);
   std::string start_text, goal_text, change = "obstacle", algorithm_text = "amha";
@@ -102,20 +109,23 @@ int benchReplanMain(int argc, char** argv) {
   app.add_option("--goal", goal_text, "goal pose x,y,theta")->required();
   app.add_option("--updates", updates, "map updates (default 20)");
   app.add_option("--window", window, "cells per side of an updated window (default 100)");
-  app.add_option("--change", change, "what an update does: obstacle (a lethal block of a fifth of the window, "
-                                     "default) or same (the cells' own values)");
+  app.add_option("--change", change,
+                 "what an update does: obstacle (a lethal block of a fifth of the window, "
+                 "default) or same (the cells' own values)");
   app.add_option("--seed", seed, "seed of the windows' places (default 1)");
   app.add_option("--algorithm", algorithm_text, "algorithm (default amha)");
-  app.add_option("--time-limit", time_limit, "seconds per plan at most (default 10; each plan stops at its first solution)");
+  app.add_option("--time-limit", time_limit,
+                 "seconds per plan at most (default 10; each plan stops at its first solution)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   Algorithm algorithm;
-  if (!parseAlgorithm(algorithm_text, &algorithm) || updates < 1 || window < 1 || !(time_limit > 0.0) ||
-      (change != "obstacle" && change != "same")) {
-    std::cerr << "amha bench replan: need a known algorithm, --updates and --window >= 1, a positive time limit "
+  if (!parseAlgorithm(algorithm_text, &algorithm) || updates < 1 || window < 1 ||
+      !(time_limit > 0.0) || (change != "obstacle" && change != "same")) {
+    std::cerr << "amha bench replan: need a known algorithm, --updates and --window >= 1, a "
+                 "positive time limit "
                  "and --change obstacle|same\n";
     return kExitUsage;
   }
@@ -139,30 +149,33 @@ int benchReplanMain(int argc, char** argv) {
     return kExitUsage;
   }
   const GridMap& m0 = *loaded.map;
-  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells (%.1f M)\n", benchCommandLine(argc, argv).c_str(),
-              machineDescription().c_str(), sourceCommit().c_str(), m0.width, m0.height, m0.width * 1e-6 * m0.height);
+  std::printf("%s\nmachine: %s\ncommit: %s\nmap: %d x %d cells (%.1f M)\n",
+              benchCommandLine(argc, argv).c_str(), machineDescription().c_str(),
+              sourceCommit().c_str(), m0.width, m0.height, m0.width * 1e-6 * m0.height);
   const char* names[2] = {"repair", "compute"};
   std::vector<double> build[2], heur[2], first[2];
   int mismatches = 0, unsolved = 0, not_repaired = 0;
   try {
     for (int k = 0; k < 2; ++k) {
       const Replan r = planOnce(*planners[k], start, goal, algorithm, time_limit);
-      std::printf("initial plan (%s chain): heuristics %.4f s (%s), first solution after %.4f s\n", names[k],
-                  r.heuristic_s, lattice::heuristicSourceName(r.source), r.first_s);
+      std::printf("initial plan (%s chain): heuristics %.4f s (%s), first solution after %.4f s\n",
+                  names[k], r.heuristic_s, lattice::heuristicSourceName(r.source), r.first_s);
     }
     std::mt19937 rng(seed);
     auto map = loaded.map;
     const double res = m0.resolution;
     auto cell = [&](const lattice::Pose2D& p) {
-      return std::array<int, 2>{static_cast<int>((p.x - m0.origin_x) / res), static_cast<int>((p.y - m0.origin_y) / res)};
+      return std::array<int, 2>{static_cast<int>((p.x - m0.origin_x) / res),
+                                static_cast<int>((p.y - m0.origin_y) / res)};
     };
     // The robot's own surroundings stay as they are, so that start and goal stay valid.
     const int clear = static_cast<int>(2.0 / res);
-    std::printf("%-6s %-8s %9s %9s %9s %-9s %12s\n", "update", "chain", "build s", "heur. s", "first s", "grids",
-                "first cost");
+    std::printf("%-6s %-8s %9s %9s %9s %-9s %12s\n", "update", "chain", "build s", "heur. s",
+                "first s", "grids", "first cost");
     for (int u = 0; u < updates; ++u) {
       auto next = std::make_shared<GridMap>(*map);
-      const CellRect r = randomUpdate(rng, *map, *next, window, change == "obstacle", {cell(start), cell(goal)}, clear);
+      const CellRect r = randomUpdate(rng, *map, *next, window, change == "obstacle",
+                                      {cell(start), cell(goal)}, clear);
       Replan results[2];
       for (int j = 0; j < 2; ++j) {
         const int k = (u + j) % 2;  // alternate which chain goes first
@@ -174,14 +187,16 @@ int benchReplanMain(int argc, char** argv) {
       }
       for (int k = 0; k < 2; ++k) {
         const Replan& x = results[k];
-        std::printf("%-6d %-8s %9.4f %9.4f %9.4f %-9s %12lld\n", u + 1, names[k], x.build_s, x.heuristic_s,
-                    x.solved ? x.first_s : -1.0, lattice::heuristicSourceName(x.source),
+        std::printf("%-6d %-8s %9.4f %9.4f %9.4f %-9s %12lld\n", u + 1, names[k], x.build_s,
+                    x.heuristic_s, x.solved ? x.first_s : -1.0,
+                    lattice::heuristicSourceName(x.source),
                     x.solved ? static_cast<long long>(x.first_cost) : -1LL);
         build[k].push_back(x.build_s);
         heur[k].push_back(x.heuristic_s);
         if (x.solved) first[k].push_back(x.first_s);
       }
-      if (results[0].solved != results[1].solved || results[0].first_cost != results[1].first_cost) ++mismatches;
+      if (results[0].solved != results[1].solved || results[0].first_cost != results[1].first_cost)
+        ++mismatches;
       if (!results[0].solved) ++unsolved;
       if (results[0].source != lattice::HeuristicSource::kRepaired) ++not_repaired;
       map = next;
@@ -192,20 +207,23 @@ int benchReplanMain(int argc, char** argv) {
   }
   std::printf("\nmedians over %d updates (first: over the solved ones):\n", updates);
   for (int k = 0; k < 2; ++k) {
-    std::printf("  %-8s build %.4f s, heuristics %.4f s, first solution %.4f s\n", names[k], median(build[k]),
-                median(heur[k]), median(first[k]));
+    std::printf("  %-8s build %.4f s, heuristics %.4f s, first solution %.4f s\n", names[k],
+                median(build[k]), median(heur[k]), median(first[k]));
   }
-  std::printf("heuristics: repair / compute = %.3f; first solution: %.3f\n", median(heur[0]) / median(heur[1]),
-              median(first[0]) / median(first[1]));
-  std::printf("updates whose grids were not repaired: %d; unsolved: %d; first solutions that differ: %d\n",
-              not_repaired, unsolved, mismatches);
+  std::printf("heuristics: repair / compute = %.3f; first solution: %.3f\n",
+              median(heur[0]) / median(heur[1]), median(first[0]) / median(first[1]));
+  std::printf(
+      "updates whose grids were not repaired: %d; unsolved: %d; first solutions that differ: %d\n",
+      not_repaired, unsolved, mismatches);
   return mismatches == 0 ? kExitOk : kExitInternal;
 }
 
 }  // namespace
 
-AMHA_REGISTER_BENCHMARK("replan", "a plan to the same goal after each map update: heuristic grids repaired vs computed again",
-                        benchReplanMain);
+AMHA_REGISTER_BENCHMARK(
+    "replan",
+    "a plan to the same goal after each map update: heuristic grids repaired vs computed again",
+    benchReplanMain);
 
 }  // namespace cli
 }  // namespace amha

@@ -16,8 +16,9 @@ using FootprintFn = std::function<std::vector<std::array<double, 2>>(const latti
 
 /// Throws std::runtime_error if the file cannot be written.
 void writePlanImage(const std::string& png_path, const lattice::GridMap& map,
-                    const std::vector<std::vector<lattice::Pose2D>>& paths, const FootprintFn& footprint_at,
-                    const lattice::Pose2D& start, const lattice::Pose2D& goal);
+                    const std::vector<std::vector<lattice::Pose2D>>& paths,
+                    const FootprintFn& footprint_at, const lattice::Pose2D& start,
+                    const lattice::Pose2D& goal);
 
 /// A path drawn in its own colour (BGR) and named in the legend.
 struct LabelledPath {
@@ -29,8 +30,9 @@ struct LabelledPath {
 /// PNG of several paths on the part of the map around them (with a margin of `margin_m`),
 /// scaled up to about 900 pixels, each path in its colour, with a legend, start and goal.
 /// Throws std::runtime_error if the file cannot be written.
-void writePathsImage(const std::string& png_path, const lattice::GridMap& map, const std::vector<LabelledPath>& paths,
-                     const lattice::Pose2D& start, const lattice::Pose2D& goal, double margin_m = 2.0);
+void writePathsImage(const std::string& png_path, const lattice::GridMap& map,
+                     const std::vector<LabelledPath>& paths, const lattice::Pose2D& start,
+                     const lattice::Pose2D& goal, double margin_m = 2.0);
 
 }  // namespace cli
 }  // namespace amha

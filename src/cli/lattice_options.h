@@ -23,7 +23,8 @@ struct LatticeOptions {
   std::optional<double> resolution;  // Moving AI maps only (default 0.1)
   std::optional<int> upscale;        // Moving AI maps only (default 1)
   bool unknown_free = false;
-  std::optional<int> lethal_threshold;  // map_server maps (.yaml) only: occupancy >= this is lethal (65)
+  std::optional<int>
+      lethal_threshold;  // map_server maps (.yaml) only: occupancy >= this is lethal (65)
   std::optional<std::string> mprim;
   std::optional<double> turning_radius;
   std::optional<int> headings;
@@ -40,7 +41,7 @@ struct LatticeOptions {
   std::optional<std::string> inadmissible_kind;
   bool backward = false;
   bool inflate_heading_terms = false;
-  bool turn_term = false;  // --no-turn-term, kept for old scripts, only restates the default
+  bool turn_term = false;      // --no-turn-term, kept for old scripts, only restates the default
   PrimitiveOptions primitive;  // --primitive-generator, --motion-model, --reverse-penalty
 
   void addTo(CLI::App& app);

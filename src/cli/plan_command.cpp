@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -25,59 +25,82 @@ namespace cli {
 namespace {
 
 int planMain(int argc, char** argv) {
-  CLI::App app("Plans a path for a robot with (x, y, heading) states on a map, anytime: every improved "
-               "solution is printed as it is found.", argv[0]);
+  CLI::App app(
+      "Plans a path for a robot with (x, y, heading) states on a map, anytime: every improved "
+      "solution is printed as it is found.",
+      argv[0]);
   LatticeOptions lo;
   lo.addTo(app);
   std::string start_text, goal_text, algorithm_name = "amha", json_path, image_path;
   double time_limit = 10.0, goal_tolerance = 0.0;
   std::optional<double> w1, w2, dw1, dw2, eps;
   QueueSchedule schedule = QueueSchedule::kRoundRobin;
-  app.add_option("--start", start_text, "start pose x,y,theta (m, m, rad; .cfg maps: the file's start)");
+  app.add_option("--start", start_text,
+                 "start pose x,y,theta (m, m, rad; .cfg maps: the file's start)");
   app.add_option("--goal", goal_text, "goal pose x,y,theta (.cfg maps: the file's end)");
-  app.add_option("--goal-tolerance", goal_tolerance,
-                 "metres: if the goal is in collision, plan to the nearest collision-free pose within this "
-                 "distance that the start can reach (default 0: the exact goal)");
+  app.add_option(
+      "--goal-tolerance", goal_tolerance,
+      "metres: if the goal is in collision, plan to the nearest collision-free pose within this "
+      "distance that the start can reach (default 0: the exact goal)");
   double start_tolerance = 0.0, escape_penalty = lattice::StartOptions().penalty;
-  app.add_option("--start-tolerance", start_tolerance,
-                 "metres: if the start is in collision, the path may first leave it by motions across inscribed "
-                 "cells and the obstacle cells under the robot, within this distance (default 0: refuse it)");
+  app.add_option(
+      "--start-tolerance", start_tolerance,
+      "metres: if the start is in collision, the path may first leave it by motions across "
+      "inscribed "
+      "cells and the obstacle cells under the robot, within this distance (default 0: refuse it)");
   app.add_option("--escape-penalty", escape_penalty,
-                 "with --start-tolerance: an escape motion costs this times its cost across the costliest free "
+                 "with --start-tolerance: an escape motion costs this times its cost across the "
+                 "costliest free "
                  "cells (default 2, >= 1)");
   bool any_goal_heading = false;
-  app.add_flag("--any-goal-heading", any_goal_heading,
-               "end at the goal's position with whichever heading is cheapest (its own is ignored)");
-  app.add_option("--algorithm", algorithm_name, "amha | mha | ara | ana | wastar | astar (default amha)");
-  app.add_option("--time-limit", time_limit, "seconds, heuristic computation included (default 10)");
-  app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar), in [1, 1e6]")->check(weightRange());
+  app.add_flag(
+      "--any-goal-heading", any_goal_heading,
+      "end at the goal's position with whichever heading is cheapest (its own is ignored)");
+  app.add_option("--algorithm", algorithm_name,
+                 "amha | mha | ara | ana | wastar | astar (default amha)");
+  app.add_option("--time-limit", time_limit,
+                 "seconds, heuristic computation included (default 10)");
+  app.add_option("--w1", w1, "initial w1 (anchor inflation; epsilon for ara/wastar), in [1, 1e6]")
+      ->check(weightRange());
   app.add_option("--w2", w2, "initial w2 (amha/mha), in [1, 1e6]")->check(weightRange());
-  app.add_option("--dw1", dw1, "decrement of w1 per iteration, in [0, 1e6]")->check(decrementRange());
-  app.add_option("--dw2", dw2, "decrement of w2 per iteration, in [0, 1e6]")->check(decrementRange());
+  app.add_option("--dw1", dw1, "decrement of w1 per iteration, in [0, 1e6]")
+      ->check(decrementRange());
+  app.add_option("--dw2", dw2, "decrement of w2 per iteration, in [0, 1e6]")
+      ->check(decrementRange());
   cli::addScheduleOption(app, &schedule);
   std::optional<std::string> weights_name;
   std::optional<double> certified_ratio, certified_split, final_gap;
-  app.add_option("--weights", weights_name,
-                 "anytime weight schedule of amha/ara: certified (from the last certified bound) or decrement "
-                 "(the paper's: w -= dw)");
-  app.add_option("--certified-ratio", certified_ratio, "certified schedule: next bound = 1 + ratio x (c - 1)");
-  app.add_option("--certified-split", certified_split, "certified schedule: w1 = bound^split, w2 = bound / w1");
-  app.add_option("--final-gap", final_gap, "certified schedule: prove optimality once c <= 1 + gap");
+  app.add_option(
+      "--weights", weights_name,
+      "anytime weight schedule of amha/ara: certified (from the last certified bound) or decrement "
+      "(the paper's: w -= dw)");
+  app.add_option("--certified-ratio", certified_ratio,
+                 "certified schedule: next bound = 1 + ratio x (c - 1)");
+  app.add_option("--certified-split", certified_split,
+                 "certified schedule: w1 = bound^split, w2 = bound / w1");
+  app.add_option("--final-gap", final_gap,
+                 "certified schedule: prove optimality once c <= 1 + gap");
   std::optional<double> stall_expansions, stall_w1;
-  app.add_option("--stall-expansions", stall_expansions,
-                 "amha/ara: after this many expansions without a path, go on with w1 = --stall-w1 (0: never)");
-  app.add_option("--stall-w1", stall_w1, "amha/ara: the w1 a stalled first iteration goes on with, in [1, 1e6]")
+  app.add_option(
+      "--stall-expansions", stall_expansions,
+      "amha/ara: after this many expansions without a path, go on with w1 = --stall-w1 (0: never)");
+  app.add_option("--stall-w1", stall_w1,
+                 "amha/ara: the w1 a stalled first iteration goes on with, in [1, 1e6]")
       ->check(weightRange());
   std::optional<bool> publish_within;
   app.add_flag("--publish-within", publish_within,
                "publish cheaper paths as soon as an iteration finds them (the default for amha; "
                "--publish-within=false: only at the end of each iteration)");
-  app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1), in [1, 1e6]")->check(weightRange());
-  app.add_option("--json", json_path, "write the run (runs/solutions schema + the final path) to this file");
-  app.add_option("--image", image_path, "write a PNG of the map, the improved paths and the footprint");
+  app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1), in [1, 1e6]")
+      ->check(weightRange());
+  app.add_option("--json", json_path,
+                 "write the run (runs/solutions schema + the final path) to this file");
+  app.add_option("--image", image_path,
+                 "write a PNG of the map, the improved paths and the footprint");
   bool smooth = false;
   app.add_flag("--smooth", smooth,
-               "smooth every solution (Dubins shortcuts that keep the lattice's collision test, turning radius and "
+               "smooth every solution (Dubins shortcuts that keep the lattice's collision test, "
+               "turning radius and "
                "cost bound); the smoothed path is the result, --json keeps the lattice path too");
   try {
     app.parse(argc, argv);
@@ -87,7 +110,8 @@ int planMain(int argc, char** argv) {
 
   Algorithm algorithm;
   if (!parseAlgorithm(algorithm_name, &algorithm)) {
-    std::cerr << "amha plan: unknown algorithm '" << algorithm_name << "' (amha, mha, ara, ana, wastar, astar)\n";
+    std::cerr << "amha plan: unknown algorithm '" << algorithm_name
+              << "' (amha, mha, ara, ana, wastar, astar)\n";
     return kExitUsage;
   }
   PlannerConfig pc = lattice::defaultPlannerConfig(algorithm);
@@ -98,7 +122,8 @@ int planMain(int argc, char** argv) {
   applyWeights({eps ? eps : w1, w2, dw1, dw2}, &pc);
   pc.schedule = schedule;
   if (weights_name && !parseWeightSchedule(*weights_name, &pc.weight_schedule)) {
-    std::cerr << "amha plan: --weights must be certified or decrement, not '" << *weights_name << "'\n";
+    std::cerr << "amha plan: --weights must be certified or decrement, not '" << *weights_name
+              << "'\n";
     return kExitUsage;
   }
   pc.certified_ratio = certified_ratio.value_or(pc.certified_ratio);
@@ -107,7 +132,8 @@ int planMain(int argc, char** argv) {
   pc.publish_within_iterations = publish_within.value_or(pc.publish_within_iterations);
   if (stall_expansions) {
     if (!(*stall_expansions >= 0.0 && *stall_expansions <= 1e15)) {
-      std::cerr << "amha plan: --stall-expansions " << *stall_expansions << ": expected a number of expansions in [0, 1e15]\n";
+      std::cerr << "amha plan: --stall-expansions " << *stall_expansions
+                << ": expected a number of expansions in [0, 1e15]\n";
       return kExitUsage;
     }
     pc.stall_expansions = static_cast<std::uint64_t>(*stall_expansions);
@@ -178,12 +204,13 @@ int planMain(int argc, char** argv) {
     return kExitUsage;
   }
   const lattice::GridMap& map = *loaded.map;
-  std::printf("map %s: %d x %d cells of %.3f m; algorithm %s; planner setup (primitives, footprint sweeps, "
-              "clearance, openings) %.3f s; kinematic tables %.3f s, %.1f MB\n", lo.map_file.c_str(), map.width,
-              map.height, map.resolution, algorithmName(algorithm), setup_s, table_s,
-              planner->kinematicTableBytes() / 1e6);
-  std::printf("start (%.3f, %.3f, %.3f)  goal (%.3f, %.3f, %.3f)\n", start.x, start.y, start.theta, goal.x, goal.y,
-              goal.theta);
+  std::printf(
+      "map %s: %d x %d cells of %.3f m; algorithm %s; planner setup (primitives, footprint sweeps, "
+      "clearance, openings) %.3f s; kinematic tables %.3f s, %.1f MB\n",
+      lo.map_file.c_str(), map.width, map.height, map.resolution, algorithmName(algorithm), setup_s,
+      table_s, planner->kinematicTableBytes() / 1e6);
+  std::printf("start (%.3f, %.3f, %.3f)  goal (%.3f, %.3f, %.3f)\n", start.x, start.y, start.theta,
+              goal.x, goal.y, goal.theta);
 
   limits.time_limit_s = std::max(0.0, time_limit - setup_s - table_s);
   int count = 0;
@@ -197,14 +224,17 @@ int planMain(int argc, char** argv) {
   }
   auto print = [&](const lattice::LatticeSolution& s) {
     const Solution& q = s.search;
-    std::printf("solution %d: t=%.4f s  cost=%lld  bound=%.3f  certified=%.3f  expansions=%llu  poses=%zu\n",
-                ++count, s.elapsed_total_s, static_cast<long long>(q.cost), q.nominal_bound,
-                q.certified_bound, static_cast<unsigned long long>(q.expansions), s.poses.size());
+    std::printf(
+        "solution %d: t=%.4f s  cost=%lld  bound=%.3f  certified=%.3f  expansions=%llu  "
+        "poses=%zu\n",
+        ++count, s.elapsed_total_s, static_cast<long long>(q.cost), q.nominal_bound,
+        q.certified_bound, static_cast<unsigned long long>(q.expansions), s.poses.size());
     if (stream) {
       const lattice::SmoothedStream::Step& step = stream->add(s);
       std::printf("  smoothed: cost=%lld  certified=%.3f  shortcuts=%zu  %.3f ms%s\n",
-                  static_cast<long long>(step.published.search.cost), step.published.search.certified_bound,
-                  step.smoothed.shortcuts, 1e3 * step.smoothed.seconds,
+                  static_cast<long long>(step.published.search.cost),
+                  step.published.search.certified_bound, step.smoothed.shortcuts,
+                  1e3 * step.smoothed.seconds,
                   step.republished ? "  (an earlier smoothed path is cheaper: kept)" : "");
       published = step.published;
     }
@@ -213,31 +243,40 @@ int planMain(int argc, char** argv) {
   lattice::StartOptions start_options;
   start_options.tolerance = start_tolerance;
   start_options.penalty = escape_penalty;
-  const lattice::PlanResult r = planner->plan(start, goal, start_options, goal_options, pc, limits, print);
+  const lattice::PlanResult r =
+      planner->plan(start, goal, start_options, goal_options, pc, limits, print);
   if (r.error != lattice::QueryError::kNone) {
     std::cerr << "amha plan: " << r.message << "\n";
-    const bool is_start = r.error == lattice::QueryError::kStartNotFinite || r.error == lattice::QueryError::kStartOutOfMap ||
+    const bool is_start = r.error == lattice::QueryError::kStartNotFinite ||
+                          r.error == lattice::QueryError::kStartOutOfMap ||
                           r.error == lattice::QueryError::kStartInCollision;
     if (r.error == lattice::QueryError::kGoalUnreachable) return kExitNoSolution;
     return is_start ? kExitBadStart : kExitBadGoal;
   }
-  if (r.start_escaped) std::printf("%s\nstart escape %.4f s\n", r.escape_message.c_str(), r.escape_seconds);
-  if (r.goal_substituted) std::printf("%s\ngoal choice %.4f s\n", r.message.c_str(), r.goal_seconds);
-  std::printf("status %s: %zu solutions, %llu expansions, %zu states, %.1f MB, heuristics %.4f s, total %.4f s\n",
-              statusName(r.search.status), r.solutions.size(), static_cast<unsigned long long>(r.search.expansions),
-              r.search.peak_states, r.search.peak_memory_bytes / 1e6, r.heuristic_seconds,
-              r.totalSeconds());
+  if (r.start_escaped)
+    std::printf("%s\nstart escape %.4f s\n", r.escape_message.c_str(), r.escape_seconds);
+  if (r.goal_substituted)
+    std::printf("%s\ngoal choice %.4f s\n", r.message.c_str(), r.goal_seconds);
+  std::printf(
+      "status %s: %zu solutions, %llu expansions, %zu states, %.1f MB, heuristics %.4f s, total "
+      "%.4f s\n",
+      statusName(r.search.status), r.solutions.size(),
+      static_cast<unsigned long long>(r.search.expansions), r.search.peak_states,
+      r.search.peak_memory_bytes / 1e6, r.heuristic_seconds, r.totalSeconds());
 
   // The result: the last solution, or with --smooth the smoothed path published last.
   std::vector<lattice::Pose2D> result_path;
   if (!r.solutions.empty()) result_path = stream ? published.poses : r.solutions.back().poses;
   if (stream && !r.solutions.empty()) {
     const PathMetrics a = pathMetrics(r.solutions.back().poses), b = pathMetrics(result_path);
-    std::printf("smoothed path: length %.2f m (lattice %.2f m), mean |curvature| %.3f /m (lattice %.3f), max %.3f /m "
-                "(lattice %.3f), |dheading| %.3f rad/m (lattice %.3f), curvature sign changes %d (lattice %d)\n",
-                b.length, a.length, b.mean_curvature, a.mean_curvature, b.max_curvature, a.max_curvature,
-                b.heading_change_per_metre, a.heading_change_per_metre, b.curvature_sign_changes,
-                a.curvature_sign_changes);
+    std::printf(
+        "smoothed path: length %.2f m (lattice %.2f m), mean |curvature| %.3f /m (lattice %.3f), "
+        "max %.3f /m "
+        "(lattice %.3f), |dheading| %.3f rad/m (lattice %.3f), curvature sign changes %d (lattice "
+        "%d)\n",
+        b.length, a.length, b.mean_curvature, a.mean_curvature, b.max_curvature, a.max_curvature,
+        b.heading_change_per_metre, a.heading_change_per_metre, b.curvature_sign_changes,
+        a.curvature_sign_changes);
   }
   auto poses_json = [](const std::vector<lattice::Pose2D>& poses) {
     nlohmann::json path = nlohmann::json::array();
@@ -246,7 +285,8 @@ int planMain(int argc, char** argv) {
   };
   try {
     if (!json_path.empty()) {
-      nlohmann::json run = runToJson(lo.map_file, algorithm, r.search, r.searchSolutions(), std::nullopt);
+      nlohmann::json run =
+          runToJson(lo.map_file, algorithm, r.search, r.searchSolutions(), std::nullopt);
       run["path"] = poses_json(result_path);
       if (stream && !r.solutions.empty()) {
         run["smoothed"] = true;
@@ -255,9 +295,11 @@ int planMain(int argc, char** argv) {
         run["lattice_path"] = poses_json(r.solutions.back().poses);
       }
       run["heuristic_seconds"] = r.heuristic_seconds;
-      nlohmann::json extra = {{"start", {start.x, start.y, start.theta}}, {"goal", {goal.x, goal.y, goal.theta}},
+      nlohmann::json extra = {{"start", {start.x, start.y, start.theta}},
+                              {"goal", {goal.x, goal.y, goal.theta}},
                               {"cost_units_per_metre", lattice::kCostUnitsPerMetre}};
-      if (r.planned_goal) extra["planned_goal"] = {r.planned_goal->x, r.planned_goal->y, r.planned_goal->theta};
+      if (r.planned_goal)
+        extra["planned_goal"] = {r.planned_goal->x, r.planned_goal->y, r.planned_goal->theta};
       extra["goal_tolerance"] = goal_tolerance;
       extra["goal_substituted"] = r.goal_substituted;
       extra["any_goal_heading"] = any_goal_heading;
@@ -269,8 +311,11 @@ int planMain(int argc, char** argv) {
     if (!image_path.empty()) {
       std::vector<std::vector<lattice::Pose2D>> paths;
       for (const auto& s : r.solutions) paths.push_back(s.poses);
-      if (stream && !r.solutions.empty()) paths.push_back(result_path);  // drawn last, with the footprint
-      writePlanImage(image_path, map, paths, [&](const lattice::Pose2D& p) { return planner->footprintAt(p); }, start, goal);
+      if (stream && !r.solutions.empty())
+        paths.push_back(result_path);  // drawn last, with the footprint
+      writePlanImage(
+          image_path, map, paths, [&](const lattice::Pose2D& p) { return planner->footprintAt(p); },
+          start, goal);
     }
   } catch (const std::exception& e) {
     std::cerr << "amha plan: " << e.what() << "\n";

@@ -19,9 +19,9 @@ struct RandomMapOptions {
 };
 
 struct RandomMap {
-  cv::Mat occupied;        ///< CV_8U, 255 = obstacle, 0 = free; row 0 is the map's top row
-  int obstacles = 0;       ///< shapes drawn (each wall of a row counts)
-  long pocket_cells = 0;   ///< free cells cut off from the largest free region, now filled
+  cv::Mat occupied;                ///< CV_8U, 255 = obstacle, 0 = free; row 0 is the map's top row
+  int obstacles = 0;               ///< shapes drawn (each wall of a row counts)
+  long pocket_cells = 0;           ///< free cells cut off from the largest free region, now filled
   double occupied_fraction = 0.0;  ///< after filling the pockets
 };
 

@@ -18,8 +18,8 @@ struct Query {
 /// inscribed cost), at least `min_distance` metres apart. With `solvable`, a pair is kept only
 /// if weighted A* (w = 5, default anchor) finds a path within 2 s. Fewer than `count` if a
 /// million draws do not find them. The same graph and seed give the same queries.
-std::vector<Query> randomQueries(const lattice::LatticeGraph& g, int count, unsigned seed, double min_distance,
-                                 bool solvable = false);
+std::vector<Query> randomQueries(const lattice::LatticeGraph& g, int count, unsigned seed,
+                                 double min_distance, bool solvable = false);
 
 }  // namespace cli
 }  // namespace amha

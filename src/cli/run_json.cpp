@@ -31,8 +31,9 @@ nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
   return runToJson(instance, algorithm, result, solutions, optimal_cost);
 }
 
-nlohmann::json runToJson(const std::string& instance, Algorithm algorithm, const SearchSummary& result,
-                         const std::vector<const Solution*>& solutions, std::optional<Cost> optimal_cost) {
+nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
+                         const SearchSummary& result, const std::vector<const Solution*>& solutions,
+                         std::optional<Cost> optimal_cost) {
   nlohmann::json sols = nlohmann::json::array();
   for (const Solution* s : solutions) sols.push_back(solutionToJson(*s));
   return {{"instance", instance},

@@ -19,8 +19,10 @@ namespace cli {
 nlohmann::json solutionToJson(const Solution& s);
 
 /// A run: how its search ended and its solutions, in order.
-nlohmann::json runToJson(const std::string& instance, Algorithm algorithm, const SearchSummary& summary,
-                         const std::vector<const Solution*>& solutions, std::optional<Cost> optimal_cost);
+nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
+                         const SearchSummary& summary,
+                         const std::vector<const Solution*>& solutions,
+                         std::optional<Cost> optimal_cost);
 nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
                          const SearchResult& result, std::optional<Cost> optimal_cost);
 

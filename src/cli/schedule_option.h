@@ -16,8 +16,8 @@ inline CLI::Option* addScheduleOption(CLI::App& app, QueueSchedule* out) {
           "--schedule", [out](const std::string& name) { parseSchedule(name, out); },
           "A-MHA*/MHA* order of the inadmissible queues: rr (round robin, the paper's) or dts "
           "(Dynamic Thompson Sampling; docs/search.md) (default rr)")
-      ->check(CLI::IsMember({scheduleName(QueueSchedule::kRoundRobin),
-                             scheduleName(QueueSchedule::kDts)}));
+      ->check(CLI::IsMember(
+          {scheduleName(QueueSchedule::kRoundRobin), scheduleName(QueueSchedule::kDts)}));
 }
 
 }  // namespace cli

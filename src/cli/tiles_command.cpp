@@ -90,7 +90,8 @@ std::string fmtSeconds(double t) {
 // Checks a solution move by move on the boards; the command refuses to report a wrong path.
 std::string verify(const tiles::TilesProblem& p, const tiles::Board& start, const Solution& s) {
   if (s.path.empty() || p.board(s.path.front()) != start) return "path does not begin at the start";
-  if (p.board(s.path.back()) != tiles::goalBoard(start.size)) return "path does not end at the goal";
+  if (p.board(s.path.back()) != tiles::goalBoard(start.size))
+    return "path does not end at the goal";
   for (std::size_t k = 1; k < s.path.size(); ++k) {
     if (!tiles::isOneMoveApart(p.board(s.path[k - 1]), p.board(s.path[k]))) {
       return "step " + std::to_string(k) + " is not a legal move";
@@ -102,34 +103,50 @@ std::string verify(const tiles::TilesProblem& p, const tiles::Board& start, cons
 
 int runTiles(int argc, char** argv) {
   Options o;
-  CLI::App app{"Sliding-tile experiments (the paper's Tables 1 and 2): runs the chosen "
-               "algorithms on N x N puzzles and prints success rate, T_initial, T_final, "
-               "eps_initial, eps_final, certified bound, cost, expansions/s."};
+  CLI::App app{
+      "Sliding-tile experiments (the paper's Tables 1 and 2): runs the chosen "
+      "algorithms on N x N puzzles and prints success rate, T_initial, T_final, "
+      "eps_initial, eps_final, certified bound, cost, expansions/s."};
   app.name(argv[0]);
-  auto* size_opt = app.add_option("--size", o.size, "board size N (3..9): 7 = 48-puzzle, 8 = 63-puzzle")
-                       ->check(CLI::Range(tiles::kMinSize, tiles::kMaxSize));
-  auto* random_opt = app.add_option("--random", o.random, "generate this many uniformly random solvable instances")
-                         ->check(CLI::Range(1, 1000000));
+  auto* size_opt =
+      app.add_option("--size", o.size, "board size N (3..9): 7 = 48-puzzle, 8 = 63-puzzle")
+          ->check(CLI::Range(tiles::kMinSize, tiles::kMaxSize));
+  auto* random_opt =
+      app.add_option("--random", o.random, "generate this many uniformly random solvable instances")
+          ->check(CLI::Range(1, 1000000));
   app.add_option("--seed", o.seed, "seed of the generated instances (default 1)");
-  auto* walk_opt = app.add_option("--walk", o.walk, "with --random: random walks of this many moves from the goal instead")
-      ->check(CLI::Range(1, 100000000));
+  auto* walk_opt =
+      app.add_option("--walk", o.walk,
+                     "with --random: random walks of this many moves from the goal instead")
+          ->check(CLI::Range(1, 100000000));
   auto* file_opt = app.add_option("--instances", o.instances_file,
                                   "read instances from FILE (Korf format: id optimal md tiles...)");
-  app.add_option("--algorithms", o.algorithms, "comma-separated: amha,mha,ara,ana,wastar,astar (default amha,mha,ara,ana)");
-  app.add_option("--time-limit", o.time_limit, "seconds per run (default 10)")->check(CLI::PositiveNumber);
+  app.add_option("--algorithms", o.algorithms,
+                 "comma-separated: amha,mha,ara,ana,wastar,astar (default amha,mha,ara,ana)");
+  app.add_option("--time-limit", o.time_limit, "seconds per run (default 10)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--clock", o.clock,
                  "wall (default) or cpu: measure the time limit and the reported times on the "
                  "CPU clock of the searching thread, for fair numbers on a shared machine")
       ->check(CLI::IsMember({"wall", "cpu"}));
   app.add_option("--max-expansions", o.max_expansions, "expansions per run (default: no cap)");
-  app.add_option("--w1", o.w1, "A-MHA*/MHA* initial w1 in [1, 1e6] (default 5)")->check(weightRange());
-  app.add_option("--w2", o.w2, "A-MHA*/MHA* initial w2 in [1, 1e6] (default 5)")->check(weightRange());
-  app.add_option("--dw1", o.dw1, "A-MHA* decrement of w1 per iteration in [0, 1e6] (default 0.5)")->check(decrementRange());
-  app.add_option("--dw2", o.dw2, "A-MHA* decrement of w2 per iteration in [0, 1e6] (default 0.5)")->check(decrementRange());
-  app.add_option("--eps", o.eps, "ARA* initial epsilon in [1, 1e6] (default 25)")->check(weightRange());
-  app.add_option("--deps", o.deps, "ARA* decrement of epsilon per iteration in [0, 1e6] (default 3)")->check(decrementRange());
-  app.add_option("--weight", o.weight, "weighted A* weight in [1, 1e6] (default 5)")->check(weightRange());
-  app.add_option("--heuristics", o.heuristics, "inadmissible heuristics for A-MHA*/MHA* (default 4)")
+  app.add_option("--w1", o.w1, "A-MHA*/MHA* initial w1 in [1, 1e6] (default 5)")
+      ->check(weightRange());
+  app.add_option("--w2", o.w2, "A-MHA*/MHA* initial w2 in [1, 1e6] (default 5)")
+      ->check(weightRange());
+  app.add_option("--dw1", o.dw1, "A-MHA* decrement of w1 per iteration in [0, 1e6] (default 0.5)")
+      ->check(decrementRange());
+  app.add_option("--dw2", o.dw2, "A-MHA* decrement of w2 per iteration in [0, 1e6] (default 0.5)")
+      ->check(decrementRange());
+  app.add_option("--eps", o.eps, "ARA* initial epsilon in [1, 1e6] (default 25)")
+      ->check(weightRange());
+  app.add_option("--deps", o.deps,
+                 "ARA* decrement of epsilon per iteration in [0, 1e6] (default 3)")
+      ->check(decrementRange());
+  app.add_option("--weight", o.weight, "weighted A* weight in [1, 1e6] (default 5)")
+      ->check(weightRange());
+  app.add_option("--heuristics", o.heuristics,
+                 "inadmissible heuristics for A-MHA*/MHA* (default 4)")
       ->check(CLI::Range(0, 64));
   app.add_option("--heuristic-seed", o.heuristic_seed, "seed of their random weights (default 1)");
   cli::addScheduleOption(app, &o.schedule);
@@ -138,8 +155,10 @@ int runTiles(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--jobs", o.jobs, "runs in parallel (default 1)")->check(CLI::Range(1, 64));
   app.add_option("--json", o.json, "write every run (and the settings) to FILE");
-  app.add_option("--write-instances", o.write_instances, "write the instances to FILE (Korf format)");
-  app.add_option("--plot", o.plot, "write a PNG of the median certified bound vs time per algorithm");
+  app.add_option("--write-instances", o.write_instances,
+                 "write the instances to FILE (Korf format)");
+  app.add_option("--plot", o.plot,
+                 "write a PNG of the median certified bound vs time per algorithm");
   app.add_option("--markdown", o.markdown, "write the summary table as Markdown to FILE");
   app.add_flag("--quiet,-q", o.quiet, "no progress lines");
   app.add_flag("--fresh-memory", o.fresh_memory,
@@ -173,7 +192,8 @@ int runTiles(int argc, char** argv) {
                   << "' (known: amha, mha, ara, ana, wastar, astar)\n";
         return kExitUsage;
       }
-      if (std::find(algorithms.begin(), algorithms.end(), a) == algorithms.end()) algorithms.push_back(a);
+      if (std::find(algorithms.begin(), algorithms.end(), a) == algorithms.end())
+        algorithms.push_back(a);
     }
     if (algorithms.empty()) {
       std::cerr << "amha tiles: --algorithms is empty\n";
@@ -211,7 +231,8 @@ int runTiles(int argc, char** argv) {
   }
 
   const bool cpu_clock = o.clock == "cpu";
-  const auto weights = tiles::randomTermWeights(static_cast<std::size_t>(o.heuristics), o.heuristic_seed);
+  const auto weights =
+      tiles::randomTermWeights(static_cast<std::size_t>(o.heuristics), o.heuristic_seed);
   const std::size_t per_run_bytes =
       static_cast<std::size_t>(o.memory_limit_gb * double(1ull << 30) / o.jobs);
   // Between runs the pool keeps at most one run's cap: resident memory stays below
@@ -234,8 +255,9 @@ int runTiles(int argc, char** argv) {
       const Algorithm alg = algorithms[task % algorithms.size()];
       const tiles::Instance& inst = instances[ii];
       char tag[96];
-      std::snprintf(tag, sizeof(tag), "[%*zu/%d] %s %-4s", static_cast<int>(std::to_string(n_inst).size()),
-                    ii + 1, n_inst, inst.id.c_str(), algorithmName(alg));
+      std::snprintf(tag, sizeof(tag), "[%*zu/%d] %s %-4s",
+                    static_cast<int>(std::to_string(n_inst).size()), ii + 1, n_inst,
+                    inst.id.c_str(), algorithmName(alg));
       auto problem = tiles::TilesProblem::create(inst.start, weights);
       auto planner = makePlanner(configFor(alg, o));
       TilesRun& run = runs[task];
@@ -251,10 +273,10 @@ int runTiles(int argc, char** argv) {
         run.solution_cpu_s.push_back(threadCpuSeconds() - cpu0);
         if (o.quiet) return;
         std::lock_guard<std::mutex> lock(io);
-        std::cerr << tag << "  solution " << s.iteration + 1 << ": cost " << s.cost
-                  << "  bound " << fmtBound(s.nominal_bound) << " (certified "
-                  << fmtBound(s.certified_bound) << ")  at "
-                  << fmtSeconds(cpu_clock ? run.solution_cpu_s.back() : s.elapsed_s) << " s\n";
+        std::cerr << tag << "  solution " << s.iteration + 1 << ": cost " << s.cost << "  bound "
+                  << fmtBound(s.nominal_bound) << " (certified " << fmtBound(s.certified_bound)
+                  << ")  at " << fmtSeconds(cpu_clock ? run.solution_cpu_s.back() : s.elapsed_s)
+                  << " s\n";
       };
       // On the CPU clock the search measures its budget on this thread's CPU time.
       if (cpu_clock) limits.clock = StopClock::kThreadCpu;
@@ -283,8 +305,8 @@ int runTiles(int argc, char** argv) {
           std::cerr << "no solution";
         }
         std::cerr << ", " << r.expansions << " expansions in " << fmtSeconds(r.elapsed_s)
-                  << " s (CPU " << fmtSeconds(run.cpu_s) << " s), "
-                  << r.peak_states << " states, " << (r.peak_memory_bytes >> 20) << " MiB\n";
+                  << " s (CPU " << fmtSeconds(run.cpu_s) << " s), " << r.peak_states << " states, "
+                  << (r.peak_memory_bytes >> 20) << " MiB\n";
       }
     }
   };
@@ -293,15 +315,16 @@ int runTiles(int argc, char** argv) {
   worker();
   for (auto& t : pool) t.join();
   if (failed) {
-    std::cerr << "amha tiles: internal error: a reported solution failed verification: " << failure << "\n";
+    std::cerr << "amha tiles: internal error: a reported solution failed verification: " << failure
+              << "\n";
     return kExitInternal;
   }
 
   const auto summary = summarize(runs, algorithms, cpu_clock);
   std::cout << instances.size() << " instance(s), board " << instances.front().start.size << "x"
             << instances.front().start.size << ", time limit " << o.time_limit << " s ("
-            << (cpu_clock ? "CPU" : "wall") << " clock), "
-            << o.heuristics << " inadmissible heuristic(s) (seed " << o.heuristic_seed << "), "
+            << (cpu_clock ? "CPU" : "wall") << " clock), " << o.heuristics
+            << " inadmissible heuristic(s) (seed " << o.heuristic_seed << "), "
             << (o.schedule == QueueSchedule::kDts ? "DTS" : "round-robin") << " queue schedule\n"
             << reportText(runs, algorithms, cpu_clock);
 
@@ -327,34 +350,57 @@ int runTiles(int argc, char** argv) {
       for (const auto& w : weights) jw.push_back({{"md", w.md}, {"lc", w.lc}, {"mt", w.mt}});
       extra["settings"] = {
           {"size", instances.front().start.size},
-          {"instances_file", o.instances_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.instances_file)},
-          {"random", o.random}, {"seed", o.seed}, {"walk", o.walk},
-          {"algorithms", o.algorithms}, {"time_limit_s", o.time_limit}, {"clock", o.clock},
-          {"max_expansions", o.max_expansions > 0 ? nlohmann::json(o.max_expansions) : nlohmann::json(nullptr)},
-          {"w1", o.w1}, {"w2", o.w2}, {"dw1", o.dw1}, {"dw2", o.dw2}, {"schedule", scheduleName(o.schedule)},
-          {"ara_eps", o.eps}, {"ara_deps", o.deps}, {"wastar_weight", o.weight},
-          {"memory_limit_gb", o.memory_limit_gb}, {"jobs", o.jobs},
+          {"instances_file",
+           o.instances_file.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.instances_file)},
+          {"random", o.random},
+          {"seed", o.seed},
+          {"walk", o.walk},
+          {"algorithms", o.algorithms},
+          {"time_limit_s", o.time_limit},
+          {"clock", o.clock},
+          {"max_expansions",
+           o.max_expansions > 0 ? nlohmann::json(o.max_expansions) : nlohmann::json(nullptr)},
+          {"w1", o.w1},
+          {"w2", o.w2},
+          {"dw1", o.dw1},
+          {"dw2", o.dw2},
+          {"schedule", scheduleName(o.schedule)},
+          {"ara_eps", o.eps},
+          {"ara_deps", o.deps},
+          {"wastar_weight", o.weight},
+          {"memory_limit_gb", o.memory_limit_gb},
+          {"jobs", o.jobs},
           {"fresh_memory", o.fresh_memory},
           {"hardware_threads", std::thread::hardware_concurrency()}};
       extra["heuristics"] = {{"anchor", "MD + LC"},
                              {"inadmissible", "round(md*MD + lc*LC + mt*MT)"},
-                             {"count", o.heuristics}, {"seed", o.heuristic_seed},
+                             {"count", o.heuristics},
+                             {"seed", o.heuristic_seed},
                              {"weights", jw}};
       nlohmann::json jinst = nlohmann::json::array();
       for (const auto& inst : instances) {
-        jinst.push_back({{"id", inst.id}, {"tiles", inst.start.tiles},
-                         {"optimal", inst.optimal ? nlohmann::json(*inst.optimal) : nlohmann::json(nullptr)}});
+        jinst.push_back(
+            {{"id", inst.id},
+             {"tiles", inst.start.tiles},
+             {"optimal", inst.optimal ? nlohmann::json(*inst.optimal) : nlohmann::json(nullptr)}});
       }
       extra["instances"] = jinst;
       nlohmann::json jsum = nlohmann::json::array();
       for (const auto& s : summary) {
-        jsum.push_back({{"algorithm", algorithmName(s.algorithm)}, {"runs", s.runs}, {"solved", s.solved},
-                        {"success_rate", s.success_rate()}, {"t_initial_s", s.t_initial},
-                        {"t_final_s", s.t_final}, {"eps_initial", s.eps_initial},
-                        {"eps_final", s.eps_final}, {"certified_final", s.certified_final},
-                        {"cost_final", s.cost_final}, {"expansions_per_s", s.expansions_per_s},
+        jsum.push_back({{"algorithm", algorithmName(s.algorithm)},
+                        {"runs", s.runs},
+                        {"solved", s.solved},
+                        {"success_rate", s.success_rate()},
+                        {"t_initial_s", s.t_initial},
+                        {"t_final_s", s.t_final},
+                        {"eps_initial", s.eps_initial},
+                        {"eps_final", s.eps_final},
+                        {"certified_final", s.certified_final},
+                        {"cost_final", s.cost_final},
+                        {"expansions_per_s", s.expansions_per_s},
                         {"expansions_per_cpu_s", s.expansions_per_cpu_s},
-                        {"bytes_per_state", s.bytes_per_state}, {"proven_optimal", s.proven_optimal},
+                        {"bytes_per_state", s.bytes_per_state},
+                        {"proven_optimal", s.proven_optimal},
                         {"with_known_optimal", s.with_known_optimal},
                         {"at_known_optimal", s.at_known_optimal},
                         {"below_known_optimal", s.below_known_optimal}});
@@ -380,7 +426,8 @@ int runTiles(int argc, char** argv) {
     std::cerr << "amha tiles: " << e.what() << "\n";
     return kExitOutput;
   }
-  const bool any = std::any_of(runs.begin(), runs.end(), [](const TilesRun& r) { return r.result.hasSolution(); });
+  const bool any = std::any_of(runs.begin(), runs.end(),
+                               [](const TilesRun& r) { return r.result.hasSolution(); });
   return any ? kExitOk : kExitNoSolution;
 }
 

@@ -52,9 +52,9 @@ std::string epsCell(double mean, int finite, int total) {
   return cell;
 }
 
-const char* kHeader[] = {"algorithm", "success %",  "T_initial s", "T_final s", "eps_initial",
-                         "eps_final", "cert_final", "cost_final",  "exp/s",     "exp/cpu-s",
-                         "bytes/state", "states"};
+const char* kHeader[] = {"algorithm",   "success %", "T_initial s", "T_final s",
+                         "eps_initial", "eps_final", "cert_final",  "cost_final",
+                         "exp/s",       "exp/cpu-s", "bytes/state", "states"};
 
 std::vector<std::vector<std::string>> rows(const std::vector<AlgorithmSummary>& s) {
   std::vector<std::vector<std::string>> out;
@@ -207,9 +207,8 @@ std::string formatMarkdownTable(const std::vector<AlgorithmSummary>& s) {
 }
 
 std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
-                                           const std::vector<Algorithm>& algorithms,
-                                           bool cpu_clock, std::size_t* n_common,
-                                           std::size_t* n_instances) {
+                                           const std::vector<Algorithm>& algorithms, bool cpu_clock,
+                                           std::size_t* n_common, std::size_t* n_instances) {
   // Instances (in first-seen order) and how many of the algorithms solved each.
   std::vector<std::string> order;
   std::map<std::string, std::size_t> solved_by;
@@ -257,15 +256,14 @@ std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
 namespace {
 
 const char* kCommonHeader[] = {"algorithm", "T_initial s", "median T_initial s", "T_final s",
-                               "eps_final", "cert_final", "cost_final"};
+                               "eps_final", "cert_final",  "cost_final"};
 
 std::vector<std::vector<std::string>> commonRows(const std::vector<CommonSummary>& s) {
   std::vector<std::vector<std::string>> out;
   for (const CommonSummary& c : s) {
     out.push_back({algorithmName(c.algorithm), num(c.t_initial), num(c.median_t_initial),
                    num(c.t_final), epsCell(c.eps_final, c.eps_final_finite, c.n),
-                   num(c.certified_final, 2),
-                   num(c.cost_final, 1)});
+                   num(c.certified_final, 2), num(c.cost_final, 1)});
   }
   return out;
 }
@@ -298,7 +296,8 @@ std::string lateNote(const std::vector<TilesRun>& runs) {
 
 void dropLateSolutions(TilesRun& run, double time_limit, bool cpu_clock) {
   std::size_t keep = 0;
-  while (keep < run.result.solutions.size() && run.solutionTime(keep, cpu_clock) <= time_limit) ++keep;
+  while (keep < run.result.solutions.size() && run.solutionTime(keep, cpu_clock) <= time_limit)
+    ++keep;
   run.late_solutions += static_cast<int>(run.result.solutions.size() - keep);
   run.result.solutions.resize(keep);
   if (run.solution_cpu_s.size() > keep) run.solution_cpu_s.resize(keep);
@@ -313,7 +312,8 @@ std::string reportText(const std::vector<TilesRun>& runs, const std::vector<Algo
   out << formatTable(summary) << legend(cpu_clock) << "\n" << lateNote(runs);
   if (algorithms.size() > 1) {
     out << "\non the " << n_common << " of " << n_inst << " instances every algorithm solved:\n";
-    if (n_common > 0) out << textTable({std::begin(kCommonHeader), std::end(kCommonHeader)}, commonRows(common));
+    if (n_common > 0)
+      out << textTable({std::begin(kCommonHeader), std::end(kCommonHeader)}, commonRows(common));
   }
   out << formatOptimalityCheck(summary);
   return out.str();
@@ -331,7 +331,8 @@ std::string reportMarkdown(const std::vector<TilesRun>& runs,
   if (algorithms.size() > 1) {
     out << "\nOn the " << n_common << " of " << n_inst << " instances every algorithm solved:\n\n";
     if (n_common > 0) {
-      out << markdownTable({std::begin(kCommonHeader), std::end(kCommonHeader)}, commonRows(common));
+      out << markdownTable({std::begin(kCommonHeader), std::end(kCommonHeader)},
+                           commonRows(common));
     }
   }
   const std::string check = formatOptimalityCheck(summary);
@@ -352,8 +353,9 @@ bool writeBoundPlot(const std::string& path, const std::vector<TilesRun>& runs,
   });
   if (!drawable) return false;
   PlotOptions po;
-  po.title = std::to_string(board_size * board_size - 1) + "-puzzle: median certified bound vs time (" +
-             std::to_string(n_instances) + " instances)";
+  po.title = std::to_string(board_size * board_size - 1) +
+             "-puzzle: median certified bound vs time (" + std::to_string(n_instances) +
+             " instances)";
   po.x_label = cpu_clock ? "CPU time [s] (log)" : "time [s] (log)";
   po.y_label = "median certified bound";
   po.log_x = true;
@@ -381,7 +383,8 @@ std::vector<PlotSeries> medianBoundCurves(const std::vector<TilesRun>& runs,
         if (r.algorithm != alg) continue;
         double b = inf;
         for (std::size_t k = 0; k < r.result.solutions.size(); ++k) {
-          if (r.solutionTime(k, cpu_clock) <= t) b = std::min(b, r.result.solutions[k].certified_bound);
+          if (r.solutionTime(k, cpu_clock) <= t)
+            b = std::min(b, r.result.solutions[k].certified_bound);
         }
         best.push_back(b);
       }

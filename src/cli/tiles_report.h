@@ -40,24 +40,24 @@ void dropLateSolutions(TilesRun& run, double time_limit, bool cpu_clock);
 struct AlgorithmSummary {
   Algorithm algorithm = Algorithm::kAmhaStar;
   int runs = 0, solved = 0;
-  double t_initial = 0, t_final = 0;        ///< mean seconds to the first / last solution
-  double eps_initial = 0, eps_final = 0;    ///< mean nominal bound of the first / last solution
-  int eps_initial_finite = 0;               ///< solved runs whose first nominal bound is finite
-  int eps_final_finite = 0;                 ///< ... whose last nominal bound is finite
-                                            ///< (eps means are over the finite ones; ANA*'s E
-                                            ///< is infinite until its second solution)
-  double certified_final = 0;               ///< mean certified bound of the last solution
-  double cost_final = 0;                    ///< mean cost of the last solution
+  double t_initial = 0, t_final = 0;      ///< mean seconds to the first / last solution
+  double eps_initial = 0, eps_final = 0;  ///< mean nominal bound of the first / last solution
+  int eps_initial_finite = 0;             ///< solved runs whose first nominal bound is finite
+  int eps_final_finite = 0;               ///< ... whose last nominal bound is finite
+                                          ///< (eps means are over the finite ones; ANA*'s E
+                                          ///< is infinite until its second solution)
+  double certified_final = 0;             ///< mean certified bound of the last solution
+  double cost_final = 0;                  ///< mean cost of the last solution
   double median_t_initial = 0, median_certified_final = 0;
-  double expansions_per_s = 0;              ///< total expansions / total search (wall) time
-  double expansions_per_cpu_s = 0;          ///< total expansions / total CPU time: the speed
-                                            ///< on an idle core, when the machine is shared
-  double bytes_per_state = 0;               ///< mean of peak_memory_bytes / peak_states
-  double peak_states = 0;                   ///< mean states stored at the end of a run
-  int proven_optimal = 0;                   ///< runs that ended proving optimality
-  int with_known_optimal = 0;               ///< solved runs whose instance has a known optimum
-  int at_known_optimal = 0;                 ///< ... whose final cost equals it
-  int below_known_optimal = 0;              ///< ... whose final cost is below it (a wrong file)
+  double expansions_per_s = 0;      ///< total expansions / total search (wall) time
+  double expansions_per_cpu_s = 0;  ///< total expansions / total CPU time: the speed
+                                    ///< on an idle core, when the machine is shared
+  double bytes_per_state = 0;       ///< mean of peak_memory_bytes / peak_states
+  double peak_states = 0;           ///< mean states stored at the end of a run
+  int proven_optimal = 0;           ///< runs that ended proving optimality
+  int with_known_optimal = 0;       ///< solved runs whose instance has a known optimum
+  int at_known_optimal = 0;         ///< ... whose final cost equals it
+  int below_known_optimal = 0;      ///< ... whose final cost is below it (a wrong file)
   double success_rate() const { return runs > 0 ? 100.0 * solved / runs : 0.0; }
 };
 
@@ -80,9 +80,8 @@ struct CommonSummary {
   int n = 0, eps_final_finite = 0;
 };
 std::vector<CommonSummary> summarizeCommon(const std::vector<TilesRun>& runs,
-                                           const std::vector<Algorithm>& algorithms,
-                                           bool cpu_clock, std::size_t* n_common,
-                                           std::size_t* n_instances);
+                                           const std::vector<Algorithm>& algorithms, bool cpu_clock,
+                                           std::size_t* n_common, std::size_t* n_instances);
 
 /// The whole report, as the terminal text or as Markdown: the main table, the legend, the
 /// like-with-like table and the checks against known optimal lengths.

@@ -22,10 +22,10 @@ double numberOr(const nlohmann::json& j, const char* key, double fallback) {
 }
 
 bool parseStatus(const std::string& name, SearchStatus* out) {
-  for (SearchStatus s : {SearchStatus::kProvenOptimal, SearchStatus::kBoundReached,
-                         SearchStatus::kTimeLimit, SearchStatus::kExpansionLimit,
-                         SearchStatus::kMemoryLimit, SearchStatus::kCancelled,
-                         SearchStatus::kNoSolution}) {
+  for (SearchStatus s :
+       {SearchStatus::kProvenOptimal, SearchStatus::kBoundReached, SearchStatus::kTimeLimit,
+        SearchStatus::kExpansionLimit, SearchStatus::kMemoryLimit, SearchStatus::kCancelled,
+        SearchStatus::kNoSolution}) {
     if (name == statusName(s)) {
       *out = s;
       return true;
@@ -97,7 +97,8 @@ int runTilesReport(int argc, char** argv) {
     for (const auto& j : doc.at("runs")) {
       runs.push_back(runFromJson(j));
       dropLateSolutions(runs.back(), time_limit, cpu_clock);  // files written before the rule
-      if (std::find(algorithms.begin(), algorithms.end(), runs.back().algorithm) == algorithms.end()) {
+      if (std::find(algorithms.begin(), algorithms.end(), runs.back().algorithm) ==
+          algorithms.end()) {
         algorithms.push_back(runs.back().algorithm);
       }
     }
@@ -117,7 +118,8 @@ int runTilesReport(int argc, char** argv) {
     }
     if (!plot.empty() &&
         !writeBoundPlot(plot, runs, algorithms, time_limit, cpu_clock, size, n_instances)) {
-      std::cerr << "amha tiles-report: no plot written: no algorithm solved half of the instances\n";
+      std::cerr
+          << "amha tiles-report: no plot written: no algorithm solved half of the instances\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "amha tiles-report: " << e.what() << "\n";
@@ -128,7 +130,8 @@ int runTilesReport(int argc, char** argv) {
 
 }  // namespace
 
-AMHA_REGISTER_COMMAND("tiles-report", "re-render the tables and plot of an `amha tiles --json` file",
+AMHA_REGISTER_COMMAND("tiles-report",
+                      "re-render the tables and plot of an `amha tiles --json` file",
                       runTilesReport);
 
 }  // namespace cli

@@ -19,7 +19,8 @@ namespace {
 int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 }  // namespace
 
-CoarseLattice::CoarseLattice(const LatticeGraph& graph, int block) : graph_(graph), headings_(graph.numHeadings()) {
+CoarseLattice::CoarseLattice(const LatticeGraph& graph, int block)
+    : graph_(graph), headings_(graph.numHeadings()) {
   const int w = graph.width(), h = graph.height();
   k_ = block;
   if (k_ <= 0) {
@@ -90,7 +91,8 @@ void CoarseLattice::fillBlocks(const CellRect& cells) {
     for (int x = x0; x < x1; ++x) {
       const std::uint8_t c = m.cost[static_cast<std::size_t>(y) * w + x];
       if (c >= kInscribedCost) continue;  // the robot's centre cannot be there
-      std::uint8_t& b = block_cost_[static_cast<std::size_t>(y / k_ + pad_) * pw_ + (x / k_ + pad_)];
+      std::uint8_t& b =
+          block_cost_[static_cast<std::size_t>(y / k_ + pad_) * pw_ + (x / k_ + pad_)];
       b = std::min(b, c);
     }
   }
@@ -98,14 +100,16 @@ void CoarseLattice::fillBlocks(const CellRect& cells) {
 
 std::uint32_t CoarseLattice::edgeCost(std::size_t vb, const AbstractEdge& e) const {
   const unsigned cv = block_cost_[vb];
-  const unsigned cu = block_cost_[static_cast<std::size_t>(static_cast<std::int64_t>(vb) + e.block_offset)];
+  const unsigned cu =
+      block_cost_[static_cast<std::size_t>(static_cast<std::int64_t>(vb) + e.block_offset)];
   if (cu == 255 || cv == 255) return kUnreachable;
   return static_cast<std::uint32_t>(
       std::min<Cost>(graph_.costWithPenalty(e.base_cost, std::max(cu, cv)), kUnreachable - 1));
 }
 
-bool CoarseLattice::propagate(const std::vector<std::vector<AbstractEdge>>& edges, std::vector<std::uint32_t>& dist,
-                              detail::RadixHeap& heap, const StopCondition* stop) const {
+bool CoarseLattice::propagate(const std::vector<std::vector<AbstractEdge>>& edges,
+                              std::vector<std::uint32_t>& dist, detail::RadixHeap& heap,
+                              const StopCondition* stop) const {
   for (std::uint32_t pops = 0; !heap.empty();) {
     const auto [d, v] = heap.pop();
     if (d != dist[v]) continue;
@@ -130,7 +134,8 @@ std::pair<std::size_t, std::size_t> CoarseLattice::goalNodes(int gx, int gy, int
   return {index(gx, gy, gh), 1};
 }
 
-std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward, const StopCondition* stop) const {
+std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool forward,
+                                                    const StopCondition* stop) const {
   std::vector<std::uint32_t> dist(static_cast<std::size_t>(pw_) * ph_ * headings_, kUnreachable);
   const auto [goal, count] = goalNodes(gx, gy, gh);
   if (block_cost_[goal / headings_] == 255) return dist;
@@ -146,8 +151,9 @@ std::vector<std::uint32_t> CoarseLattice::distances(int gx, int gy, int gh, bool
 // detail::repairDistances on the abstract graph. Predecessors in this search's direction are
 // found through the other direction's edge lists, which hold the same edges reversed.
 std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint32_t> old,
-                                                          const std::vector<CellRect>& changed, int gx, int gy,
-                                                          int gh, bool forward, const StopCondition* stop) const {
+                                                          const std::vector<CellRect>& changed,
+                                                          int gx, int gy, int gh, bool forward,
+                                                          const StopCondition* stop) const {
   const std::size_t total = static_cast<std::size_t>(pw_) * ph_ * headings_;
   // Saturated distances break the equality test (every edge costs at least 1).
   if (old.size() != total || std::find(old.begin(), old.end(), kUnreachable - 1) != old.end()) {
@@ -157,7 +163,8 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   const std::vector<std::vector<AbstractEdge>>& into = forward ? reverse_ : forward_;
   std::uint32_t* dist = old.data();
   const std::pair<std::size_t, std::size_t> goals = goalNodes(gx, gy, gh);
-  const std::uint32_t goal = static_cast<std::uint32_t>(goals.first), goal_count = static_cast<std::uint32_t>(goals.second);
+  const std::uint32_t goal = static_cast<std::uint32_t>(goals.first),
+                      goal_count = static_cast<std::uint32_t>(goals.second);
   // Every node of a block within an edge's reach of a changed cell's block: its edges, in and
   // out, may cost something else now (padded block coordinates).
   std::vector<std::array<int, 4>> near;
@@ -192,16 +199,19 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   };
   auto along = [&](const std::vector<std::vector<AbstractEdge>>& lists) {
     return [&](std::uint32_t u, auto&& f) {
-      for (const AbstractEdge& e : lists[u % headings_]) f(static_cast<std::uint32_t>(u + e.node_offset));
+      for (const AbstractEdge& e : lists[u % headings_])
+        f(static_cast<std::uint32_t>(u + e.node_offset));
     };
   };
   auto propagateFrom = [&](detail::RadixHeap& heap) { return propagate(edges, old, heap, stop); };
   detail::RadixHeap heap;
-  if (!detail::repairDistances(dist, goal, goal_count, block_cost_[goal / headings_] != 255, forNear, holds, along(edges),
-                               along(into), propagateFrom, stop, heap)) {
+  if (!detail::repairDistances(dist, goal, goal_count, block_cost_[goal / headings_] != 255,
+                               forNear, holds, along(edges), along(into), propagateFrom, stop,
+                               heap)) {
     return {};
   }
-  if (std::find(old.begin(), old.end(), kUnreachable - 1) != old.end()) return distances(gx, gy, gh, forward, stop);
+  if (std::find(old.begin(), old.end(), kUnreachable - 1) != old.end())
+    return distances(gx, gy, gh, forward, stop);
   return old;
 }
 

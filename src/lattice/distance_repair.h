@@ -36,10 +36,10 @@ namespace detail {
 /// Returns false if `stop` asked to stop (dist is then incomplete); `lower` receives the last
 /// key the second wave popped.
 template <class ForNear, class Holds, class ForSuccessors, class ForPredecessors, class Propagate>
-bool repairDistances(std::uint32_t* dist, std::uint32_t goal, std::uint32_t goal_count, bool goal_open,
-                     ForNear&& forNear, Holds&& holds,
-                     ForSuccessors&& forSuccessors, ForPredecessors&& forPredecessors, Propagate&& propagate,
-                     const StopCondition* stop, RadixHeap& lower) {
+bool repairDistances(std::uint32_t* dist, std::uint32_t goal, std::uint32_t goal_count,
+                     bool goal_open, ForNear&& forNear, Holds&& holds,
+                     ForSuccessors&& forSuccessors, ForPredecessors&& forPredecessors,
+                     Propagate&& propagate, const StopCondition* stop, RadixHeap& lower) {
   std::vector<std::uint32_t> failed;
   {
     RadixHeap raise;

@@ -31,10 +31,12 @@ Point centre(const Pose2D& p, int side, double r) {
 }
 
 Pose2D follow(const Pose2D& p, int turn, double length, double r) {
-  if (turn == 0) return {p.x + length * std::cos(p.theta), p.y + length * std::sin(p.theta), p.theta};
+  if (turn == 0)
+    return {p.x + length * std::cos(p.theta), p.y + length * std::sin(p.theta), p.theta};
   const double k = turn / r;
   const double th = p.theta + k * length;
-  return {p.x + (std::sin(th) - std::sin(p.theta)) / k, p.y + (std::cos(p.theta) - std::cos(th)) / k, th};
+  return {p.x + (std::sin(th) - std::sin(p.theta)) / k,
+          p.y + (std::cos(p.theta) - std::cos(th)) / k, th};
 }
 
 }  // namespace
@@ -83,7 +85,8 @@ DubinsPath shortestDubinsPath(const Pose2D& from, const Pose2D& to, double r) {
     if (d < 4.0 * r && d > 0.0) {
       const double h = std::sqrt(4.0 * r * r - 0.25 * d * d);
       for (int branch : {+1, -1}) {
-        const Point c3{c1.x + 0.5 * dx - branch * h * dy / d, c1.y + 0.5 * dy + branch * h * dx / d};
+        const Point c3{c1.x + 0.5 * dx - branch * h * dy / d,
+                       c1.y + 0.5 * dy + branch * h * dx / d};
         // Where the circles touch, the heading is perpendicular to the line of centres.
         const double psi1 = std::atan2(c3.y - c1.y, c3.x - c1.x) + side * M_PI / 2.0;
         const double psi2 = std::atan2(c3.y - c2.y, c3.x - c2.x) + side * M_PI / 2.0;

@@ -12,7 +12,8 @@ namespace lattice {
 void rasterizeSegment(CellPoint p, CellPoint q, std::vector<CellOffset>& out) {
   const double e = kRasterEpsilon;
   const double minx = std::min(p.x, q.x), maxx = std::max(p.x, q.x);
-  const int i0 = static_cast<int>(std::ceil(minx - 1.0 - e)), i1 = static_cast<int>(std::floor(maxx + e));
+  const int i0 = static_cast<int>(std::ceil(minx - 1.0 - e)),
+            i1 = static_cast<int>(std::floor(maxx + e));
   const double dx = q.x - p.x;
   for (int i = i0; i <= i1; ++i) {
     double ylo, yhi;
@@ -30,7 +31,8 @@ void rasterizeSegment(CellPoint p, CellPoint q, std::vector<CellOffset>& out) {
       ylo = std::min(ya, yb);
       yhi = std::max(ya, yb);
     }
-    const int j0 = static_cast<int>(std::ceil(ylo - 1.0 - e)), j1 = static_cast<int>(std::floor(yhi + e));
+    const int j0 = static_cast<int>(std::ceil(ylo - 1.0 - e)),
+              j1 = static_cast<int>(std::floor(yhi + e));
     for (int j = j0; j <= j1; ++j) out.push_back({i, j});
   }
 }
@@ -58,7 +60,8 @@ void rasterizePolygon(const CellPoint* poly, std::size_t n, std::vector<CellOffs
     }
     std::sort(xs, xs + count);
     for (std::size_t k = 0; k + 1 < count; k += 2) {
-      const int i0 = static_cast<int>(std::ceil(xs[k] - 0.5)), i1 = static_cast<int>(std::floor(xs[k + 1] - 0.5));
+      const int i0 = static_cast<int>(std::ceil(xs[k] - 0.5)),
+                i1 = static_cast<int>(std::floor(xs[k + 1] - 0.5));
       for (int i = i0; i <= i1; ++i) out.push_back({i, j});
     }
   }
@@ -81,7 +84,8 @@ namespace {
 
 bool segmentsCross(const std::array<double, 2>& a, const std::array<double, 2>& b,
                    const std::array<double, 2>& c, const std::array<double, 2>& d) {
-  auto orient = [](const std::array<double, 2>& p, const std::array<double, 2>& q, const std::array<double, 2>& r) {
+  auto orient = [](const std::array<double, 2>& p, const std::array<double, 2>& q,
+                   const std::array<double, 2>& r) {
     const double v = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
     return (v > 1e-12) - (v < -1e-12);
   };
@@ -89,7 +93,8 @@ bool segmentsCross(const std::array<double, 2>& a, const std::array<double, 2>& 
   return o1 * o2 < 0 && o3 * o4 < 0;
 }
 
-double pointSegmentDistance(double px, double py, const std::array<double, 2>& a, const std::array<double, 2>& b) {
+double pointSegmentDistance(double px, double py, const std::array<double, 2>& a,
+                            const std::array<double, 2>& b) {
   const double vx = b[0] - a[0], vy = b[1] - a[1];
   const double len2 = vx * vx + vy * vy;
   double t = len2 > 0 ? ((px - a[0]) * vx + (py - a[1]) * vy) / len2 : 0.0;
@@ -102,7 +107,8 @@ bool containsOrigin(const std::vector<std::array<double, 2>>& poly) {
   for (std::size_t k = 0, n = poly.size(); k < n; ++k) {
     const auto& a = poly[k];
     const auto& b = poly[(k + 1) % n];
-    if ((a[1] <= 0.0) != (b[1] <= 0.0) && a[0] + (0.0 - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) > 0.0) inside = !inside;
+    if ((a[1] <= 0.0) != (b[1] <= 0.0) && a[0] + (0.0 - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) > 0.0)
+      inside = !inside;
   }
   return inside;
 }
@@ -120,7 +126,8 @@ RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
     }
     if (r == 0.0) return f;  // a point robot
     const int sides = 16;
-    const double rv = r / std::cos(M_PI / sides);  // vertices outside so the 16-gon contains the circle
+    const double rv =
+        r / std::cos(M_PI / sides);  // vertices outside so the 16-gon contains the circle
     for (int k = 0; k < sides; ++k) {
       const double a = 2.0 * M_PI * (k + 0.5) / sides;
       f.polygon.push_back({rv * std::cos(a), rv * std::sin(a)});
@@ -135,8 +142,10 @@ RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
   if (n < 3) robotError("a polygon needs at least 3 points, got " + std::to_string(n));
   double area2 = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    if (!std::isfinite(p[k][0]) || !std::isfinite(p[k][1])) robotError("point " + std::to_string(k + 1) + " is not finite");
-    if (std::hypot(p[k][0], p[k][1]) > 100.0) robotError("point " + std::to_string(k + 1) + " is more than 100 m from the origin");
+    if (!std::isfinite(p[k][0]) || !std::isfinite(p[k][1]))
+      robotError("point " + std::to_string(k + 1) + " is not finite");
+    if (std::hypot(p[k][0], p[k][1]) > 100.0)
+      robotError("point " + std::to_string(k + 1) + " is more than 100 m from the origin");
     const auto& q = p[(k + 1) % n];
     area2 += p[k][0] * q[1] - q[0] * p[k][1];
   }
@@ -145,7 +154,8 @@ RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
     for (std::size_t b = a + 1; b < n; ++b) {
       if (b == a + 1 || (a == 0 && b == n - 1)) continue;  // neighbouring edges share a vertex
       if (segmentsCross(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])) {
-        robotError("edges " + std::to_string(a + 1) + " and " + std::to_string(b + 1) + " cross (self-intersecting polygon)");
+        robotError("edges " + std::to_string(a + 1) + " and " + std::to_string(b + 1) +
+                   " cross (self-intersecting polygon)");
       }
     }
   }
@@ -161,20 +171,23 @@ RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
 std::vector<std::array<double, 2>> RobotFootprint::at(const Pose2D& pose) const {
   std::vector<std::array<double, 2>> out;
   const double c = std::cos(pose.theta), s = std::sin(pose.theta);
-  for (const auto& v : polygon) out.push_back({pose.x + c * v[0] - s * v[1], pose.y + s * v[0] + c * v[1]});
+  for (const auto& v : polygon)
+    out.push_back({pose.x + c * v[0] - s * v[1], pose.y + s * v[0] + c * v[1]});
   return out;
 }
 
-void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res, std::vector<CellPoint>& out) {
+void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res,
+                      std::vector<CellPoint>& out) {
   footprintInCells(f, pose, res, out, std::cos(pose.theta), std::sin(pose.theta));
 }
 
-void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res, std::vector<CellPoint>& out, double c,
-                      double s) {
+void footprintInCells(const RobotFootprint& f, const Pose2D& pose, double res,
+                      std::vector<CellPoint>& out, double c, double s) {
   out.resize(f.polygon.size());
   for (std::size_t k = 0; k < f.polygon.size(); ++k) {
     const auto& v = f.polygon[k];
-    out[k] = {(pose.x + c * v[0] - s * v[1]) / res + 0.5, (pose.y + s * v[0] + c * v[1]) / res + 0.5};
+    out[k] = {(pose.x + c * v[0] - s * v[1]) / res + 0.5,
+              (pose.y + s * v[0] + c * v[1]) / res + 0.5};
   }
 }
 
@@ -190,8 +203,8 @@ Pose2D sweepSample(const Pose2D& a, const Pose2D& b, int s, int n) {
   return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.theta + t * dth};
 }
 
-void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to, std::size_t e,
-                        std::vector<CellOffset>& out) {
+void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to,
+                        std::size_t e, std::vector<CellOffset>& out) {
   // The region an edge sweeps between two placements (exact for a translation).
   const std::size_t n = from.size();
   const CellPoint quad[4] = {from[e], from[(e + 1) % n], to[(e + 1) % n], to[e]};
@@ -214,12 +227,14 @@ std::vector<CellOffset> footprintCells(const RobotFootprint& f, const Pose2D& po
   return cells;
 }
 
-PrimitiveCells primitiveCells(const RobotFootprint& f, const std::vector<Pose2D>& poses, double res) {
+PrimitiveCells primitiveCells(const RobotFootprint& f, const std::vector<Pose2D>& poses,
+                              double res) {
   PrimitiveCells out;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const Pose2D& a = poses[k];
     const Pose2D& b = k + 1 < poses.size() ? poses[k + 1] : poses[k];
-    rasterizeSegment({a.x / res + 0.5, a.y / res + 0.5}, {b.x / res + 0.5, b.y / res + 0.5}, out.centre);
+    rasterizeSegment({a.x / res + 0.5, a.y / res + 0.5}, {b.x / res + 0.5, b.y / res + 0.5},
+                     out.centre);
   }
   uniqueCells(out.centre);
   if (f.polygon.empty() || poses.empty()) return out;

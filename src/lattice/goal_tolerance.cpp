@@ -43,7 +43,8 @@ void CentreReachability::retarget(Side& side, std::int32_t target) {
 }
 
 bool CentreReachability::expand(Side& side, std::vector<std::uint64_t>& mine,
-                                const std::vector<std::uint64_t>& other, std::vector<std::int32_t>* touched) {
+                                const std::vector<std::uint64_t>& other,
+                                std::vector<std::int32_t>* touched) {
   std::pop_heap(side.heap.begin(), side.heap.end(), std::greater<>());
   const std::int32_t c = side.heap.back().second;
   side.heap.pop_back();
@@ -87,7 +88,8 @@ CentreReachability::Answer CentreReachability::reaches(int x, int y, const StopC
     // The start's side runs out: its component is complete and lacks the cell. The cell's side
     // runs out: the cell's component is complete and lacks the start.
     if (start_side_.heap.empty() || cell_side.heap.empty()) break;
-    if (expand(start_side_, from_start_, from_cell_, nullptr) || expand(cell_side, from_cell_, from_start_, &touched)) {
+    if (expand(start_side_, from_start_, from_cell_, nullptr) ||
+        expand(cell_side, from_cell_, from_start_, &touched)) {
       answer = Answer::kYes;
       break;
     }
@@ -110,14 +112,15 @@ struct Candidate {
   std::int64_t index;
   int heading;
   bool operator<(const Candidate& o) const {
-    return std::tie(distance, heading_difference, index) < std::tie(o.distance, o.heading_difference, o.index);
+    return std::tie(distance, heading_difference, index) <
+           std::tie(o.distance, o.heading_difference, o.index);
   }
 };
 
 }  // namespace
 
-GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, double tolerance, int start_x,
-                                int start_y, const StopCondition* stop) {
+GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, double tolerance,
+                                int start_x, int start_y, const StopCondition* stop) {
   GoalChoice choice;
   int gx = 0, gy = 0, gh = 0;
   if (!(tolerance >= 0.0) || !graph.poseToState(goal, &gx, &gy, &gh)) return choice;
@@ -126,7 +129,8 @@ GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, d
   // The goal lies inside its cell, so every cell centre on ring r (Chebyshev distance r from
   // the goal's cell) is at least (r - 1/2) cells from it: rings past tolerance / res + 1/2 hold
   // nothing within the tolerance, and none lies past the map's larger side.
-  const int last_ring = static_cast<int>(std::min(std::floor(tolerance / res + 0.5), static_cast<double>(std::max(w, h))));
+  const int last_ring = static_cast<int>(
+      std::min(std::floor(tolerance / res + 0.5), static_cast<double>(std::max(w, h))));
 
   // The best valid heading of cell (x, y), if its centre is within the tolerance.
   auto consider = [&](int x, int y, std::vector<Candidate>* out) {
@@ -137,7 +141,8 @@ GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, d
     Candidate best{d, INFINITY, static_cast<std::int64_t>(y) * w + x, -1};
     for (int k = 0; k < graph.numHeadings(); ++k) {
       if (!graph.stateValid(x, y, k)) continue;
-      const double diff = std::abs(std::remainder(graph.stateToPose(x, y, k).theta - goal.theta, 2.0 * M_PI));
+      const double diff =
+          std::abs(std::remainder(graph.stateToPose(x, y, k).theta - goal.theta, 2.0 * M_PI));
       if (diff < best.heading_difference) {
         best.heading_difference = diff;
         best.heading = k;
@@ -197,7 +202,8 @@ GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, d
     any_free = any_free || pending.size() > before;
   }
   if (decide(INFINITY)) return choice;
-  choice.outcome = any_free ? GoalChoice::Outcome::kNoneReachable : GoalChoice::Outcome::kNoFreePose;
+  choice.outcome =
+      any_free ? GoalChoice::Outcome::kNoneReachable : GoalChoice::Outcome::kNoFreePose;
   return choice;
 }
 

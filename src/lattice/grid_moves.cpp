@@ -35,7 +35,8 @@ std::vector<GridMove> gridMoves(int connectivity) {
   return moves;
 }
 
-double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves) {
+double walkLength(const std::vector<CellOffset>& cells, CellOffset to,
+                  const std::vector<GridMove>& moves) {
   std::vector<CellOffset> cs = cells;
   uniqueCells(cs);
   auto index = [&](CellOffset c) {

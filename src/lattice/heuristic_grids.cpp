@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "amha_planner/lattice/lattice_graph.h"
-#include "distance_repair.h"
 #include "dial_queue.h"
+#include "distance_repair.h"
 #include "radix_heap.h"
 
 namespace amha {
@@ -44,7 +44,9 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
   needed_[3] = c.heuristics.num_inadmissible >= 3;
   // The anchor's grid: cells the centre may occupy (below inscribed), admissible scale.
   const int connectivity = c.heuristics.anchor_connectivity;
-  if (needed_[0]) buildKind(0, connectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1, previous);
+  if (needed_[0])
+    buildKind(0, connectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1,
+              previous);
   const double s = graph.cheapestUnitsPerCell();
   const bool kinematic = c.heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic;
   if (needed_[1] && needed_[0] && kinematic && graph.gridAnchorUnitsPerCell() > 0) {
@@ -55,7 +57,8 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
     buildKind(1, 8, s, nullptr, kLethalCost - 1, previous);
     // Without inscribed cells the point robot's grid is the anchor's (same cells, same moves)
     // at another scale: compute it once.
-    if (needed_[0] && connectivity == 8 && kinds_[1].level == kinds_[0].level && graph.gridAnchorUnitsPerCell() > 0) {
+    if (needed_[0] && connectivity == 8 && kinds_[1].level == kinds_[0].level &&
+        graph.gridAnchorUnitsPerCell() > 0) {
       alias_[1] = 0;
       scale_[1] = s / graph.gridAnchorUnitsPerCell();
     }
@@ -98,7 +101,8 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
 }
 
 void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_cell,
-                                     const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class,
+                                     const std::vector<std::uint8_t>* mask,
+                                     std::uint8_t max_cost_class,
                                      const HeuristicGridBuilder* previous) {
   Kind& kind = kinds_[k];
   const int pw = width_ + 4, ph = height_ + 4;
@@ -116,7 +120,8 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
       const std::size_t i = static_cast<std::size_t>(y) * width_ + x;
       const std::uint8_t c = cost[i];
       const bool passable = c <= max_cost_class && (mask == nullptr || (*mask)[i]);
-      kind.level[static_cast<std::size_t>(y + 2) * pw + (x + 2)] = passable ? std::min<std::uint8_t>(c, 252) : 255;
+      kind.level[static_cast<std::size_t>(y + 2) * pw + (x + 2)] =
+          passable ? std::min<std::uint8_t>(c, 252) : 255;
     }
   }
   const std::vector<GridMove> moves = gridMoves(connectivity);
@@ -146,7 +151,8 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
     kind.required_count.push_back(static_cast<int>(mv.required.size()) - 2);
     kind.either_side.push_back(mv.either_side ? 1 : 0);
     for (int c = 0; c < 256; ++c) {
-      const double step = units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+      const double step =
+          units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));
       if (c <= 252) {
         kind.max_step = std::max(kind.max_step, kind.step[m * 256 + c]);
@@ -156,9 +162,9 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   }
 }
 
-
 template <class Queue>
-bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop) const {
+bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue,
+                                    const StopCondition* stop) const {
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
   for (std::uint32_t pops = 0; !queue.empty();) {
@@ -169,10 +175,10 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
       const std::uint32_t w = moveCost(kind, i, m);
       if (w == kUnreachable) continue;
       const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + off[m]);
-      // Saturating before the comparison, as dijkstraUnrolled does: a distance past kUnreachable - 1
-      // is still a reachable cell.
-      const std::uint32_t v =
-          static_cast<std::uint32_t>(std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
+      // Saturating before the comparison, as dijkstraUnrolled does: a distance past kUnreachable -
+      // 1 is still a reachable cell.
+      const std::uint32_t v = static_cast<std::uint32_t>(
+          std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
       if (v < dist[j]) {
         dist[j] = v;
         queue.push(v, static_cast<std::uint32_t>(j));
@@ -249,7 +255,8 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
     diagonal(i + pw + 1, ln, le, s_ne);
     if constexpr (kKnights) {
       // Both cells between the ends are required (255 stays above every class, as above).
-      const unsigned lsw = level[i - pw - 1], lse = level[i - pw + 1], lnw = level[i + pw - 1], lne = level[i + pw + 1];
+      const unsigned lsw = level[i - pw - 1], lse = level[i - pw + 1], lnw = level[i + pw - 1],
+                     lne = level[i + pw + 1];
       auto knight = [&](std::int64_t dx, std::int64_t dy, unsigned a, unsigned b, int m) {
         const unsigned mid = std::max(a, b);
         if (mid == 255) return;
@@ -270,7 +277,8 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
   return true;
 }
 
-bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid, const StopCondition* stop) const {
+bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid,
+                               const StopCondition* stop) const {
   const int pw = width_ + 4;
   const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
   grid.width = width_;
@@ -284,7 +292,7 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   // Every finite distance is popped, the largest last.
   auto search = [&](auto& queue) {
     queue.push(0, goal);
-    const bool complete = eight ? dijkstraUnrolled<false>(kind, dist, queue, stop)
+    const bool complete = eight     ? dijkstraUnrolled<false>(kind, dist, queue, stop)
                           : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop)
                                     : dijkstra(kind, dist, queue, stop);
     grid.max_distance = queue.lastPopped();
@@ -301,8 +309,9 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   return search(q);
 }
 
-bool HeuristicGridBuilder::fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
-                               const std::vector<std::uint32_t>* source, const StopCondition* stop) const {
+bool HeuristicGridBuilder::fill(std::vector<std::uint32_t>& grid, std::size_t count,
+                                std::uint32_t value, const std::vector<std::uint32_t>* source,
+                                const StopCondition* stop) const {
   // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
   // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
   grid.clear();
@@ -406,11 +415,12 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   };
   detail::RadixHeap queue;
   auto propagate = [&](detail::RadixHeap& q) {
-    return nm == 8 ? dijkstraUnrolled<false>(kind, dist, q, stop)
-                   : nm == 16 ? dijkstraUnrolled<true>(kind, dist, q, stop) : dijkstra(kind, dist, q, stop);
+    return nm == 8    ? dijkstraUnrolled<false>(kind, dist, q, stop)
+           : nm == 16 ? dijkstraUnrolled<true>(kind, dist, q, stop)
+                      : dijkstra(kind, dist, q, stop);
   };
-  if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1), along(-1), propagate, stop,
-                               queue)) {
+  if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1),
+                               along(-1), propagate, stop, queue)) {
     return false;
   }
   // The cells it did not pop keep old distances; a bound is enough (a saturated distance would
@@ -427,23 +437,24 @@ DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) con
   return g;
 }
 
-std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(int gx, int gy, int gh, bool inadmissible,
-                                                                    unsigned threads, bool backward,
-                                                                    const StopCondition* stop) const {
+std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(
+    int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward,
+    const StopCondition* stop) const {
   return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, nullptr, nullptr);
 }
 
-std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(std::shared_ptr<const GoalHeuristics> old,
-                                                                   const std::vector<CellRect>& changed,
-                                                                   bool inadmissible, unsigned threads,
-                                                                   bool backward, const StopCondition* stop) const {
+std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(
+    std::shared_ptr<const GoalHeuristics> old, const std::vector<CellRect>& changed,
+    bool inadmissible, unsigned threads, bool backward, const StopCondition* stop) const {
   const int gx = old->goal_x, gy = old->goal_y, gh = old->goal_heading;
-  return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, std::move(old), &changed);
+  return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, std::move(old),
+                         &changed);
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
-    int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward, const StopCondition* stop,
-    std::shared_ptr<const GoalHeuristics> old, const std::vector<CellRect>* changed) const {
+    int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward,
+    const StopCondition* stop, std::shared_ptr<const GoalHeuristics> old,
+    const std::vector<CellRect>* changed) const {
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<GoalHeuristics>();
   out->goal_x = gx;
@@ -457,14 +468,17 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
     if (wanted[k] && alias_[k] == k) tasks.push_back(k);
   }
   for (int k = 0; k < kNumGridKinds; ++k) {
-    if (wanted[k] && !wanted[alias_[k]] && std::find(tasks.begin(), tasks.end(), alias_[k]) == tasks.end()) tasks.push_back(alias_[k]);
+    if (wanted[k] && !wanted[alias_[k]] &&
+        std::find(tasks.begin(), tasks.end(), alias_[k]) == tasks.end())
+      tasks.push_back(alias_[k]);
   }
   // old's grid of kind k can be repaired into kind k's if it holds kind k's own distances
   // (another kind's, rescaled, cannot), for the same map size (repair() passes old's goal).
   const DistanceGrid* base[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
   for (int k : tasks) {
     const DistanceGrid* g = k >= 0 && old ? old->grids[k].get() : nullptr;
-    if (g != nullptr && old->scale[k] == 1.0 && g->width == width_ && g->height == height_) base[k] = g;
+    if (g != nullptr && old->scale[k] == 1.0 && g->width == width_ && g->height == height_)
+      base[k] = g;
   }
   // A grid nobody else holds (the caller gave up old, and no other task reads it) is repaired in
   // place: copying a big grid costs more than the repair itself. The grids in GoalHeuristics
@@ -473,17 +487,20 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
   std::shared_ptr<DistanceGrid> result[kNumGridKinds];
   for (int k : tasks) {
     if (k < 0) continue;
-    const bool alone = base[k] != nullptr && std::count(std::begin(base), std::end(base), base[k]) == 1;
+    const bool alone =
+        base[k] != nullptr && std::count(std::begin(base), std::end(base), base[k]) == 1;
     if (owned && alone) {
       for (int j = 0; j < kNumGridKinds; ++j) {
-        if (old->grids[j].get() == base[k]) result[k] = std::const_pointer_cast<DistanceGrid>(old->grids[j]);
+        if (old->grids[j].get() == base[k])
+          result[k] = std::const_pointer_cast<DistanceGrid>(old->grids[j]);
       }
     } else {
       result[k] = std::make_shared<DistanceGrid>();
     }
   }
   auto grid = [&](int k) {
-    if (base[k] != nullptr) return repairGrid(kinds_[k], gx, gy, *base[k], *changed, *result[k], stop);
+    if (base[k] != nullptr)
+      return repairGrid(kinds_[k], gx, gy, *base[k], *changed, *result[k], stop);
     return run(kinds_[k], gx, gy, *result[k], stop);
   };
   std::atomic<std::size_t> next{0};
@@ -491,9 +508,10 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
   auto worker = [&]() {
     for (std::size_t t; !stopped && (t = next.fetch_add(1)) < tasks.size();) {
       if (tasks[t] < 0) {
-        out->coarse = old && !old->coarse.empty()
-                          ? coarse_->repairDistances(old->coarse, *changed, gx, gy, gh, backward, stop)
-                          : coarse_->distances(gx, gy, gh, backward, stop);
+        out->coarse =
+            old && !old->coarse.empty()
+                ? coarse_->repairDistances(old->coarse, *changed, gx, gy, gh, backward, stop)
+                : coarse_->distances(gx, gy, gh, backward, stop);
         out->coarse_lattice = coarse_.get();
         if (out->coarse.empty()) stopped = true;
       } else if (!grid(tasks[t])) {

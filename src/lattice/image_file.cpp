@@ -79,7 +79,8 @@ std::string dlerrorText() {
 
 Module loadModule() {
   Module m;
-  std::string error_path, error_text;  // the most useful failure: an existing file beats a missing one
+  std::string error_path,
+      error_text;  // the most useful failure: an existing file beats a missing one
   bool error_is_existing_file = false;
   for (const std::string& path : candidatePaths()) {
     // RTLD_NODELETE: OpenCV's libraries are not made to be unloaded.
@@ -95,7 +96,8 @@ Module loadModule() {
       continue;
     }
     void* read = dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_READ));
-    void* write = read != nullptr ? dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_WRITE)) : nullptr;
+    void* write =
+        read != nullptr ? dlsym(handle, AMHA_IMAGE_CODECS_STR(AMHA_IMAGE_CODECS_WRITE)) : nullptr;
     if (write == nullptr) {  // dlerror() names the missing symbol
       m.error = "cannot load image codecs module " + path + ": " + dlerrorText();
       return m;
@@ -131,7 +133,8 @@ cv::Mat readImageFile(const std::string& path, ImageReadMode mode) {
     case kAmhaImageCodecsOutOfMemory:
       throw std::bad_alloc();
     default:
-      throw std::runtime_error(error[0] != '\0' ? std::string(error) : "OpenCV cannot read " + path);
+      throw std::runtime_error(error[0] != '\0' ? std::string(error)
+                                                : "OpenCV cannot read " + path);
   }
 }
 

@@ -2,12 +2,12 @@
 #include "amha_planner/lattice/detail/kinematic_table.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <atomic>
 #include <future>
-#include <thread>
 #include <stdexcept>
+#include <thread>
 #include <tuple>
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
@@ -23,8 +23,14 @@ namespace {
 
 /// The 8 rotations and reflections of the square grid, as integer matrices.
 constexpr std::array<std::array<int, 4>, 8> kSquareSymmetries = {{
-    {1, 0, 0, 1}, {0, -1, 1, 0}, {-1, 0, 0, -1}, {0, 1, -1, 0},  // rotations by 0, 90, 180, 270
-    {1, 0, 0, -1}, {-1, 0, 0, 1}, {0, 1, 1, 0}, {0, -1, -1, 0},  // reflections: x axis, y axis, y = x, y = -x
+    {1, 0, 0, 1},
+    {0, -1, 1, 0},
+    {-1, 0, 0, -1},
+    {0, 1, -1, 0},  // rotations by 0, 90, 180, 270
+    {1, 0, 0, -1},
+    {-1, 0, 0, 1},
+    {0, 1, 1, 0},
+    {0, -1, -1, 0},  // reflections: x axis, y axis, y = x, y = -x
 }};
 
 bool lessMove(const KinematicMove& a, const KinematicMove& b) {
@@ -37,8 +43,8 @@ std::vector<KinematicMove> canonicalMoves(std::vector<KinematicMove> moves) {
   std::sort(moves.begin(), moves.end(), lessMove);
   std::vector<KinematicMove> out;
   for (const KinematicMove& m : moves) {
-    if (!out.empty() && out.back().dx == m.dx && out.back().dy == m.dy && out.back().start_heading == m.start_heading &&
-        out.back().end_heading == m.end_heading) {
+    if (!out.empty() && out.back().dx == m.dx && out.back().dy == m.dy &&
+        out.back().start_heading == m.start_heading && out.back().end_heading == m.end_heading) {
       continue;  // a costlier duplicate (sorted by cost last)
     }
     out.push_back(m);
@@ -50,13 +56,15 @@ constexpr int kAnyKey = -1;  // the entry key of kAnyHeading
 
 }  // namespace
 
-KinematicSlice::KinematicSlice(int radius, int num_headings) : radius_(radius), headings_(num_headings) {
+KinematicSlice::KinematicSlice(int radius, int num_headings)
+    : radius_(radius), headings_(num_headings) {
   row_start_.assign(static_cast<std::size_t>(2 * radius + 2), 0);
   half_width_.assign(static_cast<std::size_t>(2 * radius + 1), 0);
   for (int dy = -radius; dy <= radius; ++dy) {
     const std::size_t row = static_cast<std::size_t>(dy + radius);
     // The largest w with w^2 + dy^2 <= R^2 (integers, so no rounding doubt).
-    int w = static_cast<int>(std::sqrt(static_cast<double>(radius) * radius - static_cast<double>(dy) * dy));
+    int w = static_cast<int>(
+        std::sqrt(static_cast<double>(radius) * radius - static_cast<double>(dy) * dy));
     while (w * w + dy * dy > radius * radius) --w;
     while ((w + 1) * (w + 1) + dy * dy <= radius * radius) ++w;
     half_width_[row] = w;
@@ -65,7 +73,8 @@ KinematicSlice::KinematicSlice(int radius, int num_headings) : radius_(radius), 
 }
 
 std::size_t KinematicSlice::bytes() const {
-  return values_.capacity() * sizeof(std::uint16_t) + row_start_.capacity() * sizeof(std::uint32_t) +
+  return values_.capacity() * sizeof(std::uint16_t) +
+         row_start_.capacity() * sizeof(std::uint32_t) +
          half_width_.capacity() * sizeof(std::int32_t);
 }
 
@@ -75,16 +84,21 @@ struct KinematicTables::Entry {
   std::shared_future<std::shared_ptr<const KinematicSlice>> slice;
 };
 
-KinematicTables::KinematicTables(std::vector<KinematicMove> moves, std::vector<double> heading_angles,
-                                 double cost_per_cell, int radius_cells)
-    : moves_(canonicalMoves(std::move(moves))), angles_(std::move(heading_angles)), s_(cost_per_cell) {
+KinematicTables::KinematicTables(std::vector<KinematicMove> moves,
+                                 std::vector<double> heading_angles, double cost_per_cell,
+                                 int radius_cells)
+    : moves_(canonicalMoves(std::move(moves))),
+      angles_(std::move(heading_angles)),
+      s_(cost_per_cell) {
   headings_ = static_cast<int>(angles_.size());
   if (headings_ <= 0) throw std::invalid_argument("kinematic table: no headings");
-  if (!(s_ > 0.0) || !std::isfinite(s_)) throw std::invalid_argument("kinematic table: cost per cell must be positive");
-  if (radius_cells < 1) throw std::invalid_argument("kinematic table: the radius must be at least one cell");
+  if (!(s_ > 0.0) || !std::isfinite(s_))
+    throw std::invalid_argument("kinematic table: cost per cell must be positive");
+  if (radius_cells < 1)
+    throw std::invalid_argument("kinematic table: the radius must be at least one cell");
   for (const KinematicMove& m : moves_) {
-    if (m.start_heading < 0 || m.start_heading >= headings_ || m.end_heading < 0 || m.end_heading >= headings_ ||
-        m.cost < 1) {
+    if (m.start_heading < 0 || m.start_heading >= headings_ || m.end_heading < 0 ||
+        m.end_heading >= headings_ || m.cost < 1) {
       throw std::invalid_argument("kinematic table: a move with an invalid heading or cost");
     }
   }
@@ -93,7 +107,8 @@ KinematicTables::KinematicTables(std::vector<KinematicMove> moves, std::vector<d
   radius_ = static_cast<int>(std::min<double>(radius_cells, std::floor(max_radius)));
   // At most ~2^26 entries (128 MB) a slice, whatever the resolution asks for.
   radius_ = std::min(radius_, static_cast<int>(std::sqrt(6.7e7 / (M_PI * headings_))));
-  if (radius_ < 1) throw std::invalid_argument("kinematic table: costs too large for a table of one cell");
+  if (radius_ < 1)
+    throw std::invalid_argument("kinematic table: costs too large for a table of one cell");
   identity_perm_.resize(static_cast<std::size_t>(headings_));
   for (int h = 0; h < headings_; ++h) identity_perm_[static_cast<std::size_t>(h)] = h;
   // The square's symmetries that map headings onto headings and moves onto moves (costs equal).
@@ -129,10 +144,12 @@ std::shared_ptr<KinematicTables> KinematicTables::shared(const std::vector<Kinem
                                                          double cost_per_cell, int radius_cells) {
   static std::mutex registry_mutex;
   static std::vector<std::weak_ptr<KinematicTables>> registry;
-  auto fresh = std::make_shared<KinematicTables>(moves, heading_angles, cost_per_cell, radius_cells);
+  auto fresh =
+      std::make_shared<KinematicTables>(moves, heading_angles, cost_per_cell, radius_cells);
   std::lock_guard<std::mutex> lock(registry_mutex);
-  registry.erase(std::remove_if(registry.begin(), registry.end(), [](const auto& w) { return w.expired(); }),
-                 registry.end());
+  registry.erase(
+      std::remove_if(registry.begin(), registry.end(), [](const auto& w) { return w.expired(); }),
+      registry.end());
   for (const auto& w : registry) {
     auto t = w.lock();
     if (t && t->moves_ == fresh->moves_ && t->angles_ == fresh->angles_ && t->s_ == fresh->s_ &&
@@ -164,7 +181,8 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   for (int y = -R; y <= R; ++y) {
     const int w = slice->half_width_[static_cast<std::size_t>(y + R)];
     for (int x = -w; x <= w; ++x) {
-      offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x), static_cast<std::int16_t>(y)};
+      offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x),
+                                                                      static_cast<std::int16_t>(y)};
     }
   }
   Cost max_cost = 0;
@@ -188,13 +206,15 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
       if (d != dist[i]) continue;
       if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
       const int h = static_cast<int>(i % static_cast<std::uint32_t>(nh));
-      const int x = offset[i / static_cast<std::uint32_t>(nh)][0], y = offset[i / static_cast<std::uint32_t>(nh)][1];
+      const int x = offset[i / static_cast<std::uint32_t>(nh)][0],
+                y = offset[i / static_cast<std::uint32_t>(nh)][1];
       for (const KinematicMove& m : by_heading[static_cast<std::size_t>(h)]) {
         const int px = to_goal ? x - m.dx : x + m.dx, py = to_goal ? y - m.dy : y + m.dy;
         if (!slice->inDisc(px, py)) continue;
         const std::uint64_t nd = static_cast<std::uint64_t>(d) + static_cast<std::uint64_t>(m.cost);
         // Only states with d + s |p| <= 2 s R can lie on a path the table needs (header).
-        if (static_cast<double>(nd) + s_ * std::sqrt(static_cast<double>(px) * px + static_cast<double>(py) * py) >
+        if (static_cast<double>(nd) +
+                s_ * std::sqrt(static_cast<double>(px) * px + static_cast<double>(py) * py) >
             limit + slack) {
           continue;
         }
@@ -220,7 +240,8 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   for (int y = -R; y <= R; ++y) {
     const int w = slice->half_width_[static_cast<std::size_t>(y + R)];
     for (int x = -w; x <= w; ++x) {
-      const double g = s_ * (2.0 * R - std::sqrt(static_cast<double>(x) * x + static_cast<double>(y) * y));
+      const double g =
+          s_ * (2.0 * R - std::sqrt(static_cast<double>(x) * x + static_cast<double>(y) * y));
       const std::uint16_t cap = static_cast<std::uint16_t>(std::floor(g));
       std::uint16_t* v = dist + slice->index(x, y, 0);
       for (int k = 0; k < nh; ++k) v[k] = std::min(v[k], cap);
@@ -237,7 +258,8 @@ KinematicLookup KinematicTables::lookup(Direction direction, int heading, const 
   const Symmetry* sym = &symmetries_.front();
   int key = kAnyKey;
   if (heading != kAnyHeading) {
-    if (heading < 0 || heading >= headings_) throw std::out_of_range("kinematic table: heading out of range");
+    if (heading < 0 || heading >= headings_)
+      throw std::out_of_range("kinematic table: heading out of range");
     key = heading;
     for (const Symmetry& s : symmetries_) {
       const int c = s.perm[static_cast<std::size_t>(heading)];
@@ -257,7 +279,8 @@ KinematicLookup KinematicTables::lookup(Direction direction, int heading, const 
       for (const auto& e : entries_) {
         if (e->direction == direction && e->key == key) future = e->slice;
       }
-      was_ready = future.valid() && future.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+      was_ready =
+          future.valid() && future.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
       if (!future.valid()) {
         mine = std::make_shared<Entry>(Entry{direction, key, promise.get_future().share()});
         entries_.push_back(mine);
@@ -293,7 +316,10 @@ KinematicLookup KinematicTables::lookup(Direction direction, int heading, const 
     slice = future.get();
   }
   if (seconds != nullptr) {
-    *seconds = was_ready ? 0.0 : std::chrono::duration<double>(std::chrono::steady_clock::now() - t_call).count();
+    *seconds =
+        was_ready
+            ? 0.0
+            : std::chrono::duration<double>(std::chrono::steady_clock::now() - t_call).count();
   }
   KinematicLookup out;
   out.slice_ = std::move(slice);
@@ -303,11 +329,13 @@ KinematicLookup KinematicTables::lookup(Direction direction, int heading, const 
   return out;
 }
 
-bool KinematicTables::prepare(Direction direction, const StopCondition* stop, unsigned threads) const {
+bool KinematicTables::prepare(Direction direction, const StopCondition* stop,
+                              unsigned threads) const {
   std::vector<int> keys;  // one heading per orbit
   for (int h = 0; h < headings_; ++h) {
     bool canonical = true;
-    for (const Symmetry& s : symmetries_) canonical = canonical && s.perm[static_cast<std::size_t>(h)] >= h;
+    for (const Symmetry& s : symmetries_)
+      canonical = canonical && s.perm[static_cast<std::size_t>(h)] >= h;
     if (canonical) keys.push_back(h);
   }
   std::atomic<std::size_t> next{0};
@@ -319,7 +347,8 @@ bool KinematicTables::prepare(Direction direction, const StopCondition* stop, un
   };
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < std::min<std::size_t>(threads, keys.size()); ++t) pool.emplace_back(worker);
+  for (std::size_t t = 1; t < std::min<std::size_t>(threads, keys.size()); ++t)
+    pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
   return !stopped;
@@ -347,7 +376,8 @@ double KinematicTables::buildSeconds() const {
 int KinematicTables::slicesBuilt() const {
   std::lock_guard<std::mutex> lock(mutex_);
   int n = 0;
-  for (const auto& e : entries_) n += e->slice.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  for (const auto& e : entries_)
+    n += e->slice.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
   return n;
 }
 

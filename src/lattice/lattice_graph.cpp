@@ -15,7 +15,9 @@ namespace lattice {
 
 namespace {
 
-[[noreturn]] void fail(LatticeError::Kind kind, const std::string& what) { throw LatticeError(kind, what); }
+[[noreturn]] void fail(LatticeError::Kind kind, const std::string& what) {
+  throw LatticeError(kind, what);
+}
 
 std::string str(double v) {
   std::ostringstream s;
@@ -25,43 +27,64 @@ std::string str(double v) {
 
 void validateMap(const GridMap& m) {
   const auto kind = LatticeError::Kind::kMap;
-  if (m.width <= 0 || m.height <= 0) fail(kind, "map: size " + std::to_string(m.width) + " x " + std::to_string(m.height) + " is not positive");
-  if (m.cost.size() != static_cast<std::size_t>(m.width) * m.height) fail(kind, "map: cost array size does not match width x height");
-  if (static_cast<std::size_t>(m.width) * m.height > (std::size_t{1} << 28)) fail(kind, "map: more than 2^28 cells");
-  if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) fail(kind, "map: resolution " + str(m.resolution) + " is not positive");
+  if (m.width <= 0 || m.height <= 0)
+    fail(kind, "map: size " + std::to_string(m.width) + " x " + std::to_string(m.height) +
+                   " is not positive");
+  if (m.cost.size() != static_cast<std::size_t>(m.width) * m.height)
+    fail(kind, "map: cost array size does not match width x height");
+  if (static_cast<std::size_t>(m.width) * m.height > (std::size_t{1} << 28))
+    fail(kind, "map: more than 2^28 cells");
+  if (!(m.resolution > 0.0) || !std::isfinite(m.resolution))
+    fail(kind, "map: resolution " + str(m.resolution) + " is not positive");
   if (m.resolution < kMinResolution || m.resolution > kMaxResolution) {
-    fail(kind, "map: resolution " + str(m.resolution) + " m is outside [" + str(kMinResolution) + ", " + str(kMaxResolution) + "]");
+    fail(kind, "map: resolution " + str(m.resolution) + " m is outside [" + str(kMinResolution) +
+                   ", " + str(kMaxResolution) + "]");
   }
-  if (!std::isfinite(m.origin_x) || !std::isfinite(m.origin_y) || !std::isfinite(m.origin_yaw)) fail(kind, "map: origin is not finite");
+  if (!std::isfinite(m.origin_x) || !std::isfinite(m.origin_y) || !std::isfinite(m.origin_yaw))
+    fail(kind, "map: origin is not finite");
   if (std::fabs(m.origin_x) > kMaxOriginMagnitude || std::fabs(m.origin_y) > kMaxOriginMagnitude) {
-    fail(kind, "map: origin (" + str(m.origin_x) + ", " + str(m.origin_y) + ") is farther than " + str(kMaxOriginMagnitude) + " m");
+    fail(kind, "map: origin (" + str(m.origin_x) + ", " + str(m.origin_y) + ") is farther than " +
+                   str(kMaxOriginMagnitude) + " m");
   }
   if (std::fabs(m.origin_yaw) > kMaxOriginYaw) {
-    fail(kind, "map: origin yaw " + str(m.origin_yaw) + " rad is beyond +-" + str(kMaxOriginYaw) + " rad");
+    fail(kind, "map: origin yaw " + str(m.origin_yaw) + " rad is beyond +-" + str(kMaxOriginYaw) +
+                   " rad");
   }
 }
 
 void validateConfig(const LatticeConfig& c, double resolution) {
   const auto kind = LatticeError::Kind::kConfig;
-  if (c.motion.mprim_file.empty() && !(c.motion.turning_radius >= kMinTurningRadiusCells * resolution && std::isfinite(c.motion.turning_radius))) {
-    fail(kind, "turning radius " + str(c.motion.turning_radius) + " m is below a hundredth of a cell (" +
-                   str(kMinTurningRadiusCells * resolution) + " m on this map of " + str(resolution) +
-                   " m cells) or not finite: the primitive generator cannot make a tighter arc, and any radius "
-                   "under a cell gives the same primitives (the tightest turn ends on a neighbouring cell)");
+  if (c.motion.mprim_file.empty() &&
+      !(c.motion.turning_radius >= kMinTurningRadiusCells * resolution &&
+        std::isfinite(c.motion.turning_radius))) {
+    fail(kind,
+         "turning radius " + str(c.motion.turning_radius) + " m is below a hundredth of a cell (" +
+             str(kMinTurningRadiusCells * resolution) + " m on this map of " + str(resolution) +
+             " m cells) or not finite: the primitive generator cannot make a tighter arc, and any "
+             "radius "
+             "under a cell gives the same primitives (the tightest turn ends on a neighbouring "
+             "cell)");
   }
   if (c.heuristics.coarse_block < 0 || c.heuristics.coarse_block > kMaxCoarseBlock) {
-    fail(kind, "coarse_block " + std::to_string(c.heuristics.coarse_block) + " is not in 0.." + std::to_string(kMaxCoarseBlock) +
-                   " (cells per block side; 0: automatic)");
+    fail(kind, "coarse_block " + std::to_string(c.heuristics.coarse_block) + " is not in 0.." +
+                   std::to_string(kMaxCoarseBlock) + " (cells per block side; 0: automatic)");
   }
-  if (c.heuristics.num_inadmissible < 0 || c.heuristics.num_inadmissible > 3) fail(kind, "num_inadmissible " + std::to_string(c.heuristics.num_inadmissible) + " is not in 0..3");
-  if (!std::isfinite(c.cost.penalty) || c.cost.penalty < 0.0 || c.cost.penalty > 10000.0) fail(kind, "cost_penalty " + str(c.cost.penalty) + " is not in [0, 10000]");
-  if (!(c.cost.nominal_speed > 0.0) || !std::isfinite(c.cost.nominal_speed)) fail(kind, "nominal_speed " + str(c.cost.nominal_speed) + " must be positive");
-  if (!(c.cost.time_to_turn_45 >= 0.0) || !std::isfinite(c.cost.time_to_turn_45)) fail(kind, "time_to_turn_45 " + str(c.cost.time_to_turn_45) + " must not be negative");
+  if (c.heuristics.num_inadmissible < 0 || c.heuristics.num_inadmissible > 3)
+    fail(kind,
+         "num_inadmissible " + std::to_string(c.heuristics.num_inadmissible) + " is not in 0..3");
+  if (!std::isfinite(c.cost.penalty) || c.cost.penalty < 0.0 || c.cost.penalty > 10000.0)
+    fail(kind, "cost_penalty " + str(c.cost.penalty) + " is not in [0, 10000]");
+  if (!(c.cost.nominal_speed > 0.0) || !std::isfinite(c.cost.nominal_speed))
+    fail(kind, "nominal_speed " + str(c.cost.nominal_speed) + " must be positive");
+  if (!(c.cost.time_to_turn_45 >= 0.0) || !std::isfinite(c.cost.time_to_turn_45))
+    fail(kind, "time_to_turn_45 " + str(c.cost.time_to_turn_45) + " must not be negative");
   if (c.cache.size < 1) fail(kind, "heuristic_cache_size must be at least 1");
   if (c.heuristics.anchor_connectivity != 8 && c.heuristics.anchor_connectivity != 16) {
-    fail(kind, "anchor_connectivity " + std::to_string(c.heuristics.anchor_connectivity) + " is not 8 or 16");
+    fail(kind, "anchor_connectivity " + std::to_string(c.heuristics.anchor_connectivity) +
+                   " is not 8 or 16");
   }
-  if (!std::isfinite(c.heuristics.kinematic_radius) || c.heuristics.kinematic_radius < 0.0 || c.heuristics.kinematic_radius > 100.0) {
+  if (!std::isfinite(c.heuristics.kinematic_radius) || c.heuristics.kinematic_radius < 0.0 ||
+      c.heuristics.kinematic_radius > 100.0) {
     fail(kind, "kinematic_radius " + str(c.heuristics.kinematic_radius) + " m is not in [0, 100]");
   }
 }
@@ -78,8 +101,8 @@ void throwIfStopped(const StopCondition* stop, const char* during) {
   if (stop == nullptr || !stop->requested()) return;
   const bool cancelled = stop->cancelled();
   throw SetupStopped(cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit,
-                     std::string(cancelled ? "cancelled" : "time budget used up") + " while building the planner (" +
-                         during + ")");
+                     std::string(cancelled ? "cancelled" : "time budget used up") +
+                         " while building the planner (" + during + ")");
 }
 
 LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config,
@@ -101,15 +124,19 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
   computeClearanceAndOpenings(CellRect{0, 0, map_->width, map_->height});
   throwIfStopped(limits.stop, "clearance and openings");
   computeAnchorScales();
-  if (config_.heuristics.grid_anchor && config_.heuristics.kinematic_radius > 0.0 && euclid_per_cell_ > 0.0) {
+  if (config_.heuristics.grid_anchor && config_.heuristics.kinematic_radius > 0.0 &&
+      euclid_per_cell_ > 0.0) {
     std::vector<KinematicMove> moves;
     moves.reserve(actions_.size());
-    for (const LatticeAction& a : actions_) moves.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
+    for (const LatticeAction& a : actions_)
+      moves.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
     // At most kMaxKinematicCells: a table's size grows with the square of its radius in cells
     // (16 MB a table at 400 cells and 16 headings), and finer maps do not need a wider one.
-    const int radius = std::min(LatticeConfig::kMaxKinematicCells,
-                                static_cast<int>(std::ceil(config_.heuristics.kinematic_radius / map_->resolution - 1e-9)));
-    kinematic_ = KinematicTables::shared(moves, primitives_.heading_angles, euclid_per_cell_, std::max(1, radius));
+    const int radius = std::min(
+        LatticeConfig::kMaxKinematicCells,
+        static_cast<int>(std::ceil(config_.heuristics.kinematic_radius / map_->resolution - 1e-9)));
+    kinematic_ = KinematicTables::shared(moves, primitives_.heading_angles, euclid_per_cell_,
+                                         std::max(1, radius));
   }
 }
 
@@ -117,12 +144,14 @@ void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
   const GridMap& m = *map_;
   const double res = m.resolution;
   // A round robot's inscribed radius is its radius (footprint_ holds the 16-gon around it).
-  const double inscribed = config_.robot.footprint.empty() ? config_.robot.radius : footprint_.inscribed_radius;
+  const double inscribed =
+      config_.robot.footprint.empty() ? config_.robot.radius : footprint_.inscribed_radius;
   const double side = std::min(m.width, m.height) * res;
   if (2.0 * inscribed > side) {
-    fail(LatticeError::Kind::kRobot, "robot footprint: its inscribed circle (radius " + str(inscribed) +
-                                         " m) is wider than the map (" + str(m.width * res) + " x " +
-                                         str(m.height * res) + " m): no pose on it is collision-free");
+    fail(LatticeError::Kind::kRobot, "robot footprint: its inscribed circle (radius " +
+                                         str(inscribed) + " m) is wider than the map (" +
+                                         str(m.width * res) + " x " + str(m.height * res) +
+                                         " m): no pose on it is collision-free");
   }
   // The cells a footprint sweeps lie within its circumscribed radius of the centre's path:
   // at most a disc plus a band along the path (cells: the radius grown by a cell's diagonal).
@@ -132,7 +161,8 @@ void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
     for (const MotionPrimitive& p : primitives_.primitives) {
       double length = 0.0;
       for (std::size_t k = 1; k < p.poses.size(); ++k) {
-        length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y) / res;
+        length +=
+            std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y) / res;
       }
       swept += M_PI * r * r + 2.0 * r * length;
     }
@@ -140,16 +170,20 @@ void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
   if (swept > static_cast<double>(kMaxSweptCells)) {
     fail(LatticeError::Kind::kRobot,
          "robot footprint: sweeping it along the " + std::to_string(primitives_.primitives.size()) +
-             " primitives would touch up to " + std::to_string(static_cast<long long>(swept)) + " cells (limit " +
-             std::to_string(kMaxSweptCells) + "): its circumscribed radius of " +
-             str(footprint_.circumscribed_radius) + " m is " + str(footprint_.circumscribed_radius / res) +
-             " cells of " + str(res) + " m; use a coarser map or a smaller robot");
+             " primitives would touch up to " + std::to_string(static_cast<long long>(swept)) +
+             " cells (limit " + std::to_string(kMaxSweptCells) + "): its circumscribed radius of " +
+             str(footprint_.circumscribed_radius) + " m is " +
+             str(footprint_.circumscribed_radius / res) + " cells of " + str(res) +
+             " m; use a coarser map or a smaller robot");
   }
-  const double bytes = swept * kBytesPerSweptCell + static_cast<double>(m.cost.size()) * kSetupBytesPerCell;
+  const double bytes =
+      swept * kBytesPerSweptCell + static_cast<double>(m.cost.size()) * kSetupBytesPerCell;
   if (bytes > static_cast<double>(limits.max_bytes)) {
     throw SetupStopped(SearchStatus::kMemoryLimit,
-                       "the planner's per-map data (footprint sweeps, clearance, openings, heuristic tables) would "
-                       "take about " + str(std::ceil(bytes / 1e6)) + " MB, above the memory cap of " +
+                       "the planner's per-map data (footprint sweeps, clearance, openings, "
+                       "heuristic tables) would "
+                       "take about " +
+                           str(std::ceil(bytes / 1e6)) + " MB, above the memory cap of " +
                            str(std::floor(static_cast<double>(limits.max_bytes) / 1e6)) + " MB");
   }
 }
@@ -198,7 +232,8 @@ void LatticeGraph::linkActionsInto() {
 void LatticeGraph::buildActions(const StopCondition* stop) {
   const double res = map_->resolution;
   const int n = primitives_.num_headings;
-  const double omega = config_.cost.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.cost.time_to_turn_45 : 0.0;
+  const double omega =
+      config_.cost.time_to_turn_45 > 0.0 ? (M_PI / 4.0) / config_.cost.time_to_turn_45 : 0.0;
   action_index_.assign(n + 1, 0);
   for (int h = 0; h < n; ++h) {
     action_index_[h] = actions_.size();
@@ -217,9 +252,11 @@ void LatticeGraph::buildActions(const StopCondition* stop) {
       for (std::size_t k = 1; k < p.poses.size(); ++k) {
         length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
       }
-      const double turn = angleDistance(primitives_.heading_angles[p.start_heading], primitives_.heading_angles[p.end_heading]);
+      const double turn = angleDistance(primitives_.heading_angles[p.start_heading],
+                                        primitives_.heading_angles[p.end_heading]);
       const double turn_as_distance = omega > 0.0 ? config_.cost.nominal_speed * turn / omega : 0.0;
-      const double units = std::ceil(kCostUnitsPerMetre * std::max(length, turn_as_distance) - 1e-6);
+      const double units =
+          std::ceil(kCostUnitsPerMetre * std::max(length, turn_as_distance) - 1e-6);
       a.base_cost = std::max<Cost>(1, std::llround(units * p.cost_multiplier));
 
       PrimitiveCells cells = primitiveCells(footprint_, p.poses, res);
@@ -259,13 +296,15 @@ void LatticeGraph::buildActions(const StopCondition* stop) {
   const auto& radii = class_radii_;
   for (LatticeAction& a : actions_) {
     // The smallest listed radius >= the action's own (its own, unless rounded up).
-    a.sweep_class = static_cast<std::uint8_t>(std::lower_bound(radii.begin(), radii.end(), a.sweep_radius) - radii.begin());
+    a.sweep_class = static_cast<std::uint8_t>(
+        std::lower_bound(radii.begin(), radii.end(), a.sweep_radius) - radii.begin());
   }
   clearance_cap_ = (radii.empty() ? 0.0f : radii.back()) + 1.0f;
   rest_cells_.resize(n);
   for (int h = 0; h < n; ++h) {
     if (!footprint_.polygon.empty()) {
-      rest_cells_[h] = footprintCells(footprint_, Pose2D{0.0, 0.0, primitives_.heading_angles[h]}, res);
+      rest_cells_[h] =
+          footprintCells(footprint_, Pose2D{0.0, 0.0, primitives_.heading_angles[h]}, res);
     }
   }
 }
@@ -277,7 +316,8 @@ std::vector<float> clearanceClassRadii(std::vector<float> radii) {
     std::vector<float> levels(255);
     for (int k = 0; k < 255; ++k) levels[k] = radii.back() * static_cast<float>(k + 1) / 255.0f;
     levels.back() = radii.back();
-    for (float& r : radii) r = *std::lower_bound(levels.begin(), levels.end(), r);  // the first >= r
+    for (float& r : radii)
+      r = *std::lower_bound(levels.begin(), levels.end(), r);  // the first >= r
     radii.erase(std::unique(radii.begin(), radii.end()), radii.end());
   }
   return radii;
@@ -328,7 +368,8 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
       const float v = d[x + 1 - cx0];
       // Open space (beyond every radius) is the common case; else count the radii below v.
       c[x] = static_cast<std::uint8_t>(
-          v > top ? num_radii : std::lower_bound(class_radii, class_radii + num_radii, v) - class_radii);
+          v > top ? num_radii
+                  : std::lower_bound(class_radii, class_radii + num_radii, v) - class_radii);
     }
   }
   if (!openings) return;
@@ -406,7 +447,8 @@ void LatticeGraph::computeAnchorScales() {
   for (std::size_t i = 0; i < actions_.size(); ++i) {
     const LatticeAction& a = actions_[i];
     const MotionPrimitive& p = primitives_.primitives[a.primitive];
-    const double turn = angleDistance(primitives_.heading_angles[p.start_heading], primitives_.heading_angles[a.end_heading]);
+    const double turn = angleDistance(primitives_.heading_angles[p.start_heading],
+                                      primitives_.heading_angles[a.end_heading]);
     if (turn <= 0.0) continue;
     const double base = static_cast<double>(a.base_cost);
     bt_e = std::min(bt_e, (base - euclid_per_cell_ * std::hypot(a.dx, a.dy)) / turn);
@@ -444,7 +486,8 @@ Pose2D LatticeGraph::cellPoseToMap(int x, int y, const Pose2D& rel) const {
   const GridMap& m = *map_;
   const double gx = (x + 0.5) * m.resolution + rel.x, gy = (y + 0.5) * m.resolution + rel.y;
   const double c = std::cos(m.origin_yaw), s = std::sin(m.origin_yaw);
-  return {m.origin_x + c * gx - s * gy, m.origin_y + s * gx + c * gy, std::remainder(rel.theta + m.origin_yaw, 2.0 * M_PI)};
+  return {m.origin_x + c * gx - s * gy, m.origin_y + s * gx + c * gy,
+          std::remainder(rel.theta + m.origin_yaw, 2.0 * M_PI)};
 }
 
 Pose2D LatticeGraph::stateToPose(int x, int y, int heading) const {

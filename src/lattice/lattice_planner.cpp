@@ -12,9 +12,9 @@
 
 #include "amha_planner/lattice/detail/goal_tolerance.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
-#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/detail/start_escape.h"
+#include "amha_planner/lattice/lattice_graph.h"
 
 namespace amha {
 namespace lattice {
@@ -29,7 +29,8 @@ struct LatticePlanner::Impl {
     int x, y, heading;
     bool inadmissible, backward;
     bool operator==(const GoalKey& o) const {
-      return x == o.x && y == o.y && heading == o.heading && inadmissible == o.inadmissible && backward == o.backward;
+      return x == o.x && y == o.y && heading == o.heading && inadmissible == o.inadmissible &&
+             backward == o.backward;
     }
   };
   struct CacheEntry {
@@ -85,11 +86,13 @@ struct LatticePlanner::Impl {
   /// computation stopped that way is not cached, and threads that were waiting for it compute
   /// the grids themselves. `seconds` receives the time spent here computing or waiting for them.
   std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
-                                                     bool backward, const StopCondition& stop, double* seconds,
-                                                     HeuristicSource* source) {
+                                                      bool backward, const StopCondition& stop,
+                                                      double* seconds, HeuristicSource* source) {
     const GoalKey key{x, y, heading, inadmissible, backward};
     const auto t0 = std::chrono::steady_clock::now();
-    auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    auto since = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
     *seconds = 0.0;
     *source = HeuristicSource::kCached;
     for (;;) {
@@ -145,9 +148,9 @@ struct LatticePlanner::Impl {
         // Moved in: if no older planner or running search holds them, they are repaired in
         // place (a stopped repair then leaves nothing to repair later: the next query computes).
         const bool repairing = stale_grids != nullptr;
-        auto grids = repairing
-                         ? builder->repair(std::move(stale_grids), stale_changed, inadmissible, 0, backward, &stop)
-                         : builder->compute(x, y, heading, inadmissible, 0, backward, &stop);
+        auto grids = repairing ? builder->repair(std::move(stale_grids), stale_changed,
+                                                 inadmissible, 0, backward, &stop)
+                               : builder->compute(x, y, heading, inadmissible, 0, backward, &stop);
         if (!grids) forget();
         promise.set_value(grids);
         *seconds = since();
@@ -162,31 +165,37 @@ struct LatticePlanner::Impl {
   }
 
   /// Appends the poses of `a` from `from` after its first (which ends the poses so far).
-  void appendMotion(const LatticeState& from, const LatticeAction& a, std::vector<Pose2D>& poses) const {
+  void appendMotion(const LatticeState& from, const LatticeAction& a,
+                    std::vector<Pose2D>& poses) const {
     const MotionPrimitive& prim = graph->primitives().primitives[a.primitive];
-    for (std::size_t i = 1; i < prim.poses.size(); ++i) poses.push_back(graph->cellPoseToMap(from.x, from.y, prim.poses[i]));
+    for (std::size_t i = 1; i < prim.poses.size(); ++i)
+      poses.push_back(graph->cellPoseToMap(from.x, from.y, prim.poses[i]));
   }
 
-  std::vector<Pose2D> posesOf(const LatticeProblem& problem, const std::vector<StateId>& path) const {
+  std::vector<Pose2D> posesOf(const LatticeProblem& problem,
+                              const std::vector<StateId>& path) const {
     std::vector<Pose2D> poses;
     if (path.empty()) return poses;
     const LatticeState s0 = problem.state(path.front());
     poses.push_back(graph->stateToPose(s0.x, s0.y, s0.heading));
     for (std::size_t k = 1; k < path.size(); ++k) {
       const LatticeAction* a = problem.actionBetween(path[k - 1], path[k], nullptr);
-      if (a == nullptr) throw std::logic_error("lattice: solution uses a transition that is not an action");
+      if (a == nullptr)
+        throw std::logic_error("lattice: solution uses a transition that is not an action");
       appendMotion(problem.state(path[k - 1]), *a, poses);
     }
     return poses;
   }
 
   /// Puts the escape from `start` to the solution's first state (an exit) before its poses.
-  void prependEscape(const StartEscape& escape, const LatticeState& start, const LatticeState& first,
-                     LatticeSolution& solution) const {
+  void prependEscape(const StartEscape& escape, const LatticeState& start,
+                     const LatticeState& first, LatticeSolution& solution) const {
     const StartEscape::Exit* exit = escape.exitAt(first);
-    if (exit == nullptr) throw std::logic_error("lattice: a solution starts at a state no escape reaches");
+    if (exit == nullptr)
+      throw std::logic_error("lattice: a solution starts at a state no escape reaches");
     std::vector<Pose2D> poses{graph->stateToPose(start.x, start.y, start.heading)};
-    for (const StartEscape::Step& step : escape.path(*exit)) appendMotion(step.from, *step.action, poses);
+    for (const StartEscape::Step& step : escape.path(*exit))
+      appendMotion(step.from, *step.action, poses);
     solution.escape_poses = poses.size();
     solution.escape_cost = exit->cost;
     poses.insert(poses.end(), solution.poses.begin() + 1, solution.poses.end());
@@ -197,7 +206,9 @@ struct LatticePlanner::Impl {
 namespace {
 
 /// The cancel flag and the time budget of `limits`, from now.
-StopCondition stopFor(const SearchLimits& limits) { return StopCondition(limits.cancel, limits.time_limit_s); }
+StopCondition stopFor(const SearchLimits& limits) {
+  return StopCondition(limits.cancel, limits.time_limit_s);
+}
 
 /// Which kinematic tables a search uses: to the goal, or searching backward from the start.
 KinematicTables::Direction tableDirection(bool backward) {
@@ -214,7 +225,8 @@ LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const Lattice
     : impl_(new Impl) {
   const StopCondition stop = stopFor(limits);
   impl_->map = map;
-  impl_->graph.reset(new LatticeGraph(std::move(map), config, GraphLimits{&stop, limits.max_memory_bytes}));
+  impl_->graph.reset(
+      new LatticeGraph(std::move(map), config, GraphLimits{&stop, limits.max_memory_bytes}));
   throwIfStopped(&stop, "heuristic tables");
   impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
 }
@@ -225,7 +237,8 @@ LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<c
   impl_->map = map;
   impl_->graph.reset(new LatticeGraph(*previous.impl_->graph, std::move(map), changed));
   impl_->builder.reset(new HeuristicGridBuilder(*previous.impl_->builder, *impl_->graph));
-  if (impl_->graph->config().cache.repair) impl_->inheritGrids(*previous.impl_, impl_->graph->recomputed());
+  if (impl_->graph->config().cache.repair)
+    impl_->inheritGrids(*previous.impl_, impl_->graph->recomputed());
 }
 
 LatticePlanner::~LatticePlanner() = default;
@@ -253,14 +266,17 @@ QueryError checkPose(const LatticeGraph& g, const Pose2D& p, bool is_start, std:
   }
   if (!g.poseToState(p, &x, &y, &h)) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, " is outside the map (%d x %d cells of %.3f m, origin (%.3f, %.3f, %.3f))",
-                  g.width(), g.height(), g.map().resolution, g.map().origin_x, g.map().origin_y, g.map().origin_yaw);
+    std::snprintf(buf, sizeof buf,
+                  " is outside the map (%d x %d cells of %.3f m, origin (%.3f, %.3f, %.3f))",
+                  g.width(), g.height(), g.map().resolution, g.map().origin_x, g.map().origin_y,
+                  g.map().origin_yaw);
     *why = std::string(name) + " " + poseText(p) + buf;
     return is_start ? QueryError::kStartOutOfMap : QueryError::kGoalOutOfMap;
   }
   if (!g.stateValid(x, y, h)) {
-    *why = std::string(name) + " " + poseText(p) + " is in collision (cell " + std::to_string(x) + ", " +
-           std::to_string(y) + ", heading " + std::to_string(h) + ": cell cost " + std::to_string(g.map().at(x, y)) +
+    *why = std::string(name) + " " + poseText(p) + " is in collision (cell " + std::to_string(x) +
+           ", " + std::to_string(y) + ", heading " + std::to_string(h) + ": cell cost " +
+           std::to_string(g.map().at(x, y)) +
            " or the footprint touches an obstacle or leaves the map)";
     return is_start ? QueryError::kStartInCollision : QueryError::kGoalInCollision;
   }
@@ -270,7 +286,8 @@ QueryError checkPose(const LatticeGraph& g, const Pose2D& p, bool is_start, std:
 
 }  // namespace
 
-QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, std::string* message) const {
+QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal,
+                                      std::string* message) const {
   std::string why;
   QueryError e = checkPose(*impl_->graph, start, true, &why);
   if (e == QueryError::kNone) e = checkPose(*impl_->graph, goal, false, &why);
@@ -278,8 +295,8 @@ QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal, s
   return e;
 }
 
-PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const PlannerConfig& algorithm,
-                                const SearchLimits& limits,
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
+                                const PlannerConfig& algorithm, const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
   return plan(start, goal, GoalOptions(), algorithm, limits, on_solution);
 }
@@ -295,9 +312,9 @@ SearchStatus stoppedStatus(const StopCondition& stop) {
 /// collision-free heading of its cell; with a tolerance, the substitute for a goal in
 /// collision. `result` holds checkQuery's verdict on entry; false if it is final (a query
 /// error, or `stop` came first: then result.search.status says which).
-bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal, const GoalOptions& options,
-                const StopCondition& stop, std::chrono::steady_clock::time_point since, PlanResult& result,
-                LatticeState* t) {
+bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal,
+                const GoalOptions& options, const StopCondition& stop,
+                std::chrono::steady_clock::time_point since, PlanResult& result, LatticeState* t) {
   g.poseToState(goal, &t->x, &t->y, &t->heading);
   if (result.error == QueryError::kGoalInCollision && options.any_heading) {
     // Another heading may be free there; the search takes any.
@@ -312,7 +329,8 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
   if (result.error == QueryError::kNone) return true;
   if (result.error != QueryError::kGoalInCollision || options.tolerance <= 0.0) return false;
   const GoalChoice c = nearestReachableGoal(g, goal, options.tolerance, s.x, s.y, &stop);
-  result.goal_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+  result.goal_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
   char tol[64];
   std::snprintf(tol, sizeof tol, "%.3f m", options.tolerance);
   switch (c.outcome) {
@@ -322,11 +340,13 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
       result.search.status = stoppedStatus(stop);
       return false;
     case GoalChoice::Outcome::kNoFreePose:
-      result.message += "; no collision-free pose lies within the goal tolerance of " + std::string(tol);
+      result.message +=
+          "; no collision-free pose lies within the goal tolerance of " + std::string(tol);
       return false;
     case GoalChoice::Outcome::kNoneReachable:
       result.error = QueryError::kGoalUnreachable;
-      result.message += "; the collision-free poses within the goal tolerance of " + std::string(tol) +
+      result.message += "; the collision-free poses within the goal tolerance of " +
+                        std::string(tol) +
                         " all lie in free space that the start's does not connect to";
       return false;
     case GoalChoice::Outcome::kFound:
@@ -336,9 +356,11 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
   result.error = QueryError::kNone;
   result.goal_substituted = true;
   char buf[200];
-  std::snprintf(buf, sizeof buf, "; planning to the nearest reachable collision-free pose instead, %s, %.3f m and "
-                "%.3f rad from it (goal tolerance %s)", poseText(g.stateToPose(c.x, c.y, c.heading)).c_str(),
-                c.distance, c.heading_difference, tol);
+  std::snprintf(buf, sizeof buf,
+                "; planning to the nearest reachable collision-free pose instead, %s, %.3f m and "
+                "%.3f rad from it (goal tolerance %s)",
+                poseText(g.stateToPose(c.x, c.y, c.heading)).c_str(), c.distance,
+                c.heading_difference, tol);
   result.message += buf;
   return true;
 }
@@ -346,16 +368,19 @@ bool chooseGoal(const LatticeGraph& g, const LatticeState& s, const Pose2D& goal
 /// The escapes from start state `s`, in collision (`collision` says how), as StartOptions
 /// allow. False if that is final: no escape (result.error kStartInCollision), or `stop` came first
 /// (result.search.status says which).
-bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions& options, const StopCondition& stop,
-                const std::string& collision, PlanResult& result, std::unique_ptr<StartEscape>* escape) {
+bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions& options,
+                const StopCondition& stop, const std::string& collision, PlanResult& result,
+                std::unique_ptr<StartEscape>* escape) {
   if (g.config().backward_search) {
     result.error = QueryError::kStartInCollision;
-    result.message = collision + "; a start escape needs a forward search, and backward_search is set";
+    result.message =
+        collision + "; a start escape needs a forward search, and backward_search is set";
     return false;
   }
   const auto t0 = std::chrono::steady_clock::now();
   escape->reset(new StartEscape(g, s, options.tolerance, options.penalty, &stop));
-  result.escape_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.escape_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   switch ((*escape)->outcome()) {
     case StartEscape::Outcome::kStopped:
       result.error = QueryError::kNone;
@@ -364,9 +389,11 @@ bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions
       return false;
     case StartEscape::Outcome::kNoExit: {
       char buf[240];
-      std::snprintf(buf, sizeof buf, "; no collision-free pose within the start tolerance of %.3f m can be reached "
-                    "by motions across inscribed cells and the %zu obstacle cell(s) under the robot", options.tolerance,
-                    (*escape)->cellsUnderStart());
+      std::snprintf(
+          buf, sizeof buf,
+          "; no collision-free pose within the start tolerance of %.3f m can be reached "
+          "by motions across inscribed cells and the %zu obstacle cell(s) under the robot",
+          options.tolerance, (*escape)->cellsUnderStart());
       result.error = QueryError::kStartInCollision;
       result.message = collision + buf;
       return false;
@@ -379,37 +406,44 @@ bool leaveStart(const LatticeGraph& g, const LatticeState& s, const StartOptions
 }
 
 /// How `solution` (null: none yet) left the start's collision, for PlanResult::escape_message.
-std::string describeEscape(const std::string& collision, const StartEscape& escape, const StartOptions& options,
-                           const LatticeSolution* solution) {
+std::string describeEscape(const std::string& collision, const StartEscape& escape,
+                           const StartOptions& options, const LatticeSolution* solution) {
   char buf[400];
   if (solution == nullptr) {
-    std::snprintf(buf, sizeof buf, "; %zu collision-free pose(s) can be reached by leaving it within the start "
-                  "tolerance of %.3f m, but no path was found from them", escape.exits().size(), options.tolerance);
+    std::snprintf(buf, sizeof buf,
+                  "; %zu collision-free pose(s) can be reached by leaving it within the start "
+                  "tolerance of %.3f m, but no path was found from them",
+                  escape.exits().size(), options.tolerance);
     return collision + buf;
   }
   const std::vector<Pose2D>& p = solution->poses;
   double length = 0.0;
-  for (std::size_t k = 1; k < solution->escape_poses; ++k) length += std::hypot(p[k].x - p[k - 1].x, p[k].y - p[k - 1].y);
-  std::snprintf(buf, sizeof buf, "; the path leaves it by %.3f m of motion (escape cost %.3f) to the collision-free "
-                "pose %s, crossing only inscribed cells and the %zu obstacle cell(s) under the robot (start tolerance "
-                "%.3f m, escape penalty %g); its bounds are relative to the optimum with such an escape allowed",
+  for (std::size_t k = 1; k < solution->escape_poses; ++k)
+    length += std::hypot(p[k].x - p[k - 1].x, p[k].y - p[k - 1].y);
+  std::snprintf(buf, sizeof buf,
+                "; the path leaves it by %.3f m of motion (escape cost %.3f) to the collision-free "
+                "pose %s, crossing only inscribed cells and the %zu obstacle cell(s) under the "
+                "robot (start tolerance "
+                "%.3f m, escape penalty %g); its bounds are relative to the optimum with such an "
+                "escape allowed",
                 length, static_cast<double>(solution->escape_cost) / kCostUnitsPerMetre,
-                poseText(p[solution->escape_poses - 1]).c_str(), escape.cellsUnderStart(), options.tolerance,
-                options.penalty);
+                poseText(p[solution->escape_poses - 1]).c_str(), escape.cellsUnderStart(),
+                options.tolerance, options.penalty);
   return collision + buf;
 }
 
 }  // namespace
 
-PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
-                                const PlannerConfig& algorithm, const SearchLimits& limits,
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
+                                const GoalOptions& goal_options, const PlannerConfig& algorithm,
+                                const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
   return plan(start, goal, StartOptions(), goal_options, algorithm, limits, on_solution);
 }
 
-PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const StartOptions& start_options,
-                                const GoalOptions& goal_options, const PlannerConfig& algorithm,
-                                const SearchLimits& limits,
+PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
+                                const StartOptions& start_options, const GoalOptions& goal_options,
+                                const PlannerConfig& algorithm, const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
   if (!std::isfinite(goal_options.tolerance) || goal_options.tolerance < 0.0) {
     throw std::invalid_argument("the goal tolerance must be finite and >= 0 (metres)");
@@ -436,23 +470,29 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   }
   // Only a goal in collision may still be planned for: then both poses are finite and inside
   // the map (and the start valid, or to be left), which poseToState needs.
-  if (result.error != QueryError::kNone && result.error != QueryError::kGoalInCollision) return result;
+  if (result.error != QueryError::kNone && result.error != QueryError::kGoalInCollision)
+    return result;
   std::unique_ptr<Planner> planner = makePlanner(algorithm);  // throws for invalid weights
   LatticeState s, t;
   g.poseToState(start, &s.x, &s.y, &s.heading);
   std::unique_ptr<StartEscape> escape;
-  if (!start_collision.empty() && !leaveStart(g, s, start_options, stop, start_collision, result, &escape)) return result;
+  if (!start_collision.empty() &&
+      !leaveStart(g, s, start_options, stop, start_collision, result, &escape))
+    return result;
   // With an escape, goals are reachable if they are from its cheapest exit.
   const LatticeState reach_from =
-      escape ? std::min_element(escape->exits().begin(), escape->exits().end(), [](const auto& a, const auto& b) {
-                 return a.cost < b.cost;
-               })->state
+      escape ? std::min_element(escape->exits().begin(), escape->exits().end(),
+                                [](const auto& a, const auto& b) { return a.cost < b.cost; })
+                   ->state
              : s;
-  if (!chooseGoal(g, reach_from, goal, goal_options, stop, std::chrono::steady_clock::now(), result, &t)) return result;
+  if (!chooseGoal(g, reach_from, goal, goal_options, stop, std::chrono::steady_clock::now(), result,
+                  &t))
+    return result;
   result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
   // Algorithms that read only the anchor do not need the inadmissible grids.
   const bool uses_inadmissible = algorithmSpecs(algorithm.algorithm).inadmissible_heuristics &&
-                                 algorithm.max_inadmissible > 0 && g.config().heuristics.num_inadmissible > 0;
+                                 algorithm.max_inadmissible > 0 &&
+                                 g.config().heuristics.num_inadmissible > 0;
   // Backward search runs from the goal to the start, with heuristics measured from the start.
   const bool backward = g.config().backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
@@ -461,7 +501,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   // The grids belong to the request's memory too: 4 bytes a padded cell for each grid it needs.
   const std::size_t padded = static_cast<std::size_t>(g.width() + 4) * (g.height() + 4);
   std::size_t grid_count = g.config().heuristics.grid_anchor ? 1 : 0;
-  if (uses_inadmissible) grid_count += static_cast<std::size_t>(g.config().heuristics.num_inadmissible);
+  if (uses_inadmissible)
+    grid_count += static_cast<std::size_t>(g.config().heuristics.num_inadmissible);
   if (grid_count * padded * sizeof(std::uint32_t) > limits.max_memory_bytes) {
     result.search.status = SearchStatus::kMemoryLimit;
     return result;
@@ -476,15 +517,17 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   KinematicLookup kinematic;
   if (g.kinematicTables()) {
     double seconds = 0.0;
-    kinematic = g.kinematicTables()->lookup(tableDirection(backward), table_heading, &stop, &seconds);
+    kinematic =
+        g.kinematicTables()->lookup(tableDirection(backward), table_heading, &stop, &seconds);
     result.heuristic_seconds += seconds;
     if (!kinematic.valid()) {
       result.search.status = stoppedStatus(stop);
       return result;
     }
   }
-  LatticeProblem problem(g, grids, from, to, uses_inadmissible ? g.config().heuristics.num_inadmissible : 0, backward, any_heading,
-                         kinematic);
+  LatticeProblem problem(g, grids, from, to,
+                         uses_inadmissible ? g.config().heuristics.num_inadmissible : 0, backward,
+                         any_heading, kinematic);
   if (escape) {
     std::vector<std::pair<LatticeState, Cost>> exits;
     for (const StartEscape::Exit& e : escape->exits()) exits.emplace_back(e.state, e.cost);
@@ -512,10 +555,12 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal, const S
   };
   // The callback has put every solution into result.solutions; the summary is what is left.
   result.search = static_cast<const SearchSummary&>(planner->search(problem, remaining, cb));
-  if (any_heading && !result.solutions.empty()) result.planned_goal->theta = result.solutions.back().poses.back().theta;
+  if (any_heading && !result.solutions.empty())
+    result.planned_goal->theta = result.solutions.back().poses.back().theta;
   if (escape) {
-    result.escape_message = describeEscape(start_collision, *escape, start_options,
-                                           result.solutions.empty() ? nullptr : &result.solutions.back());
+    result.escape_message =
+        describeEscape(start_collision, *escape, start_options,
+                       result.solutions.empty() ? nullptr : &result.solutions.back());
   }
   return result;
 }
@@ -527,14 +572,16 @@ bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) const {
   return tables->prepare(tableDirection(impl_->graph->config().backward_search), &stop);
 }
 
-bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
+bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& goal,
+                                            const GoalOptions& goal_options,
                                             const SearchLimits& limits) const {
   const auto& tables = impl_->graph->kinematicTables();
   if (!tables) return true;
   const LatticeGraph& g = *impl_->graph;
   const bool backward = g.config().backward_search;
   int x = 0, y = 0, heading = 0;
-  if (!g.poseToState(backward ? start : goal, &x, &y, &heading)) return true;  // plan() will refuse it
+  if (!g.poseToState(backward ? start : goal, &x, &y, &heading))
+    return true;  // plan() will refuse it
   if (goal_options.any_heading && !backward) heading = kAnyHeading;
   const StopCondition stop = stopFor(limits);
   return tables->lookup(tableDirection(backward), heading, &stop).valid();
@@ -568,23 +615,34 @@ const LatticeGraph& LatticePlanner::graph() const { return *impl_->graph; }
 
 const char* heuristicSourceName(HeuristicSource s) {
   switch (s) {
-    case HeuristicSource::kCached: return "cached";
-    case HeuristicSource::kComputed: return "computed";
-    case HeuristicSource::kRepaired: return "repaired";
+    case HeuristicSource::kCached:
+      return "cached";
+    case HeuristicSource::kComputed:
+      return "computed";
+    case HeuristicSource::kRepaired:
+      return "repaired";
   }
   return "unknown";
 }
 
 const char* queryErrorName(QueryError e) {
   switch (e) {
-    case QueryError::kNone: return "none";
-    case QueryError::kStartNotFinite: return "start_not_finite";
-    case QueryError::kGoalNotFinite: return "goal_not_finite";
-    case QueryError::kStartOutOfMap: return "start_out_of_map";
-    case QueryError::kGoalOutOfMap: return "goal_out_of_map";
-    case QueryError::kStartInCollision: return "start_in_collision";
-    case QueryError::kGoalInCollision: return "goal_in_collision";
-    case QueryError::kGoalUnreachable: return "goal_unreachable";
+    case QueryError::kNone:
+      return "none";
+    case QueryError::kStartNotFinite:
+      return "start_not_finite";
+    case QueryError::kGoalNotFinite:
+      return "goal_not_finite";
+    case QueryError::kStartOutOfMap:
+      return "start_out_of_map";
+    case QueryError::kGoalOutOfMap:
+      return "goal_out_of_map";
+    case QueryError::kStartInCollision:
+      return "start_in_collision";
+    case QueryError::kGoalInCollision:
+      return "goal_in_collision";
+    case QueryError::kGoalUnreachable:
+      return "goal_unreachable";
   }
   return "unknown";
 }

@@ -8,27 +8,33 @@
 namespace amha {
 namespace lattice {
 
-LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const GoalHeuristics> heuristics,
-                               LatticeState start, LatticeState goal, int num_inadmissible, bool backward,
+LatticeProblem::LatticeProblem(const LatticeGraph& graph,
+                               std::shared_ptr<const GoalHeuristics> heuristics, LatticeState start,
+                               LatticeState goal, int num_inadmissible, bool backward,
                                bool any_goal_heading, KinematicLookup kinematic)
     : graph_(graph),
       heur_(std::move(heuristics)),
       kinematic_(std::move(kinematic)),
-      kinematic_inadmissible_(kinematic_.valid() && graph.config().heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic),
+      kinematic_inadmissible_(kinematic_.valid() && graph.config().heuristics.inadmissible ==
+                                                        LatticeConfig::Inadmissible::kKinematic),
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
       backward_(backward),
       width_(graph.width()),
       headings_(graph.numHeadings()) {
-  if (graph.numHeadings() > 0xFFFF) throw LatticeError(LatticeError::Kind::kConfig, "too many headings");
-  for (int k = 0; k < kNumGridKinds; ++k) grids_[k] = heur_ && heur_->grids[k] ? heur_->grids[k].get() : nullptr;
-  if (heur_ && heur_->coarse_lattice != nullptr && !heur_->coarse.empty()) coarse_ = heur_->coarse.data();
+  if (graph.numHeadings() > 0xFFFF)
+    throw LatticeError(LatticeError::Kind::kConfig, "too many headings");
+  for (int k = 0; k < kNumGridKinds; ++k)
+    grids_[k] = heur_ && heur_->grids[k] ? heur_->grids[k].get() : nullptr;
+  if (heur_ && heur_->coarse_lattice != nullptr && !heur_->coarse.empty())
+    coarse_ = heur_->coarse.data();
   for (int k = 1; k <= num_inadmissible_; ++k) {
     if (grids_[k] == nullptr) num_inadmissible_ = k - 1;  // the planner did not build that grid
   }
   // A grid equal to an earlier one (the same distances at the same scale, e.g. the openings of
   // a robot that fits everywhere its centre does) would be a second copy of one heuristic. The
   // paper's set keeps its copies, so that its results stay as they were.
-  const bool dedupe = graph.config().heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic;
+  const bool dedupe =
+      graph.config().heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic;
   int kept = 0;
   for (int k = 1; k <= num_inadmissible_; ++k) {
     bool copy = false;
@@ -37,7 +43,8 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
       scale_[kept] = heur_->scale[k];
       continue;
     }
-    for (int j = 1; j <= kept; ++j) copy = copy || (grids_[j] == grids_[k] && scale_[j] == heur_->scale[k]);
+    for (int j = 1; j <= kept; ++j)
+      copy = copy || (grids_[j] == grids_[k] && scale_[j] == heur_->scale[k]);
     if (copy) continue;
     ++kept;
     grids_[kept] = grids_[k];
@@ -45,7 +52,8 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   }
   num_inadmissible_ = kept;
   // Inflation bases only where a heading-aware term is there to be counted once.
-  const bool turn_terms = graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
+  const bool turn_terms =
+      graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
   bases_ = !graph.config().heuristics.inflate_heading_terms && grids_[0] != nullptr &&
            (coarse_ != nullptr || kinematic_.valid() || turn_terms);
   tiles_x_ = (graph.width() + kTile - 1) / kTile;
@@ -59,7 +67,8 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
   const std::vector<double>& angles = graph.primitives().heading_angles;
   // A goal of any heading has no heading to turn to (backward, the turn is to the lattice
   // start's heading, which is fixed).
-  const bool turn_term = graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
+  const bool turn_term =
+      graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
   for (int h = 0; h < headings_; ++h) {
     const double d = turn_term ? angleDistance(angles[h], angles[goal.heading]) : 0.0;
     turn_euclid_.push_back(graph.euclidTurnUnitsPerRadian() * d);
@@ -71,12 +80,14 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph, std::shared_ptr<const 
     return;
   }
   virtual_goal_ = static_cast<StateId>(states_.size());
-  states_.push_back((static_cast<std::uint64_t>(lattice_goal.y) * width_ + lattice_goal.x) << 16 | kVirtualHeading);
+  states_.push_back((static_cast<std::uint64_t>(lattice_goal.y) * width_ + lattice_goal.x) << 16 |
+                    kVirtualHeading);
   if (backward) {
     start_ = virtual_goal_;
     goal_ = id(goal.x, goal.y, goal.heading);
     for (int h = 0; h < headings_; ++h) {
-      if (graph.stateValid(lattice_goal.x, lattice_goal.y, h)) into_goal_cell_.push_back(Edge{id(lattice_goal.x, lattice_goal.y, h), 0});
+      if (graph.stateValid(lattice_goal.x, lattice_goal.y, h))
+        into_goal_cell_.push_back(Edge{id(lattice_goal.x, lattice_goal.y, h), 0});
     }
   } else {
     start_ = id(start.x, start.y, start.heading);
@@ -98,7 +109,8 @@ StateId LatticeProblem::id(int x, int y, int heading) {
     std::fill(page, page + page_entries_, kNoState);
     pages_[tile] = page;
   }
-  std::uint32_t& slot = page[static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading];
+  std::uint32_t& slot =
+      page[static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading];
   if (slot == kNoState) {
     slot = static_cast<StateId>(states_.size());
     const std::uint64_t cell = static_cast<std::uint64_t>(y) * width_ + x;
@@ -127,14 +139,16 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
     }
     return;
   }
-  for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading); ++a) {
+  for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading);
+       ++a) {
     const Cost c = graph_.edgeCost(st.x, st.y, *a);
     if (c == kInvalidEdge) continue;
     out.push_back(Edge{id(st.x + a->dx, st.y + a->dy, a->end_heading), c});
   }
   // Any heading at the goal's cell will do: on to the virtual goal, free (the search core allows
   // cost 0 on edges that lie on no cycle: nothing leaves the virtual goal).
-  if (virtual_goal_ != kNoState && st.x == goal_x_ && st.y == goal_y_) out.push_back(Edge{virtual_goal_, 0});
+  if (virtual_goal_ != kNoState && st.x == goal_x_ && st.y == goal_y_)
+    out.push_back(Edge{virtual_goal_, 0});
 }
 
 void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost>>& exits) {
@@ -147,7 +161,8 @@ void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost
     const LatticeState& e = exits[k].first;
     start_exits_.push_back(Edge{id(e.x, e.y, e.heading), exits[k].second});
     const HeuristicValue h = anchor(e.x, e.y, e.heading);
-    const double f = static_cast<double>(exits[k].second) + (h == kInfiniteHeuristic ? INFINITY : h);
+    const double f =
+        static_cast<double>(exits[k].second) + (h == kInfiniteHeuristic ? INFINITY : h);
     if (f < best_f) {
       best_f = f;
       best = k;
@@ -156,7 +171,8 @@ void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost
   // Not in the paged index: a state of its own, which state() reads as that exit.
   const LatticeState& e = exits[best].first;
   virtual_start_ = static_cast<StateId>(states_.size());
-  states_.push_back((static_cast<std::uint64_t>(e.y) * width_ + e.x) << 16 | static_cast<std::uint64_t>(e.heading));
+  states_.push_back((static_cast<std::uint64_t>(e.y) * width_ + e.x) << 16 |
+                    static_cast<std::uint64_t>(e.heading));
   start_ = virtual_start_;
 }
 
@@ -164,7 +180,8 @@ const LatticeAction* LatticeProblem::actionBetween(StateId from, StateId to, Cos
   const LatticeState a = state(from), b = state(to);
   const LatticeAction* best = nullptr;
   Cost best_cost = kInfiniteCost;
-  for (const LatticeAction* act = graph_.actionsBegin(a.heading); act != graph_.actionsEnd(a.heading); ++act) {
+  for (const LatticeAction* act = graph_.actionsBegin(a.heading);
+       act != graph_.actionsEnd(a.heading); ++act) {
     if (a.x + act->dx != b.x || a.y + act->dy != b.y || act->end_heading != b.heading) continue;
     const Cost c = graph_.edgeCost(a.x, a.y, *act);
     if (c != kInvalidEdge && c < best_cost) {
@@ -196,8 +213,11 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue*
     c = v;
   }
   // The heading-blind part: consistent, as a maximum of consistent terms, and <= the anchor.
-  if (base != nullptr) *base = static_cast<HeuristicValue>(std::min(std::max(std::floor(euclid), std::floor(g / kGridFraction)), 4e9));
-  if (kinematic_.valid()) c = std::max<double>(c, kinematic_.value(x - goal_x_, y - goal_y_, heading));
+  if (base != nullptr)
+    *base = static_cast<HeuristicValue>(
+        std::min(std::max(std::floor(euclid), std::floor(g / kGridFraction)), 4e9));
+  if (kinematic_.valid())
+    c = std::max<double>(c, kinematic_.value(x - goal_x_, y - goal_y_, heading));
   return static_cast<HeuristicValue>(std::min(std::max({a, b, c}), 4e9));
 }
 
@@ -210,8 +230,9 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
   h[0] = anchor(st.x, st.y, st.heading, &last_bases_[0]);
   // The inadmissible ones: each Dijkstra, with the kinematic table (kKinematic) the larger of
   // it and the table, as Smac combines its obstacle and distance heuristics.
-  const double k =
-      count > 1 && kinematic_inadmissible_ ? kinematic_.value(st.x - goal_x_, st.y - goal_y_, st.heading) : 0.0;
+  const double k = count > 1 && kinematic_inadmissible_
+                       ? kinematic_.value(st.x - goal_x_, st.y - goal_y_, st.heading)
+                       : 0.0;
   for (std::size_t i = 1; i < count; ++i) {
     const std::uint32_t g = grids_[i]->at(st.x, st.y);
     if (g == kUnreachable) {

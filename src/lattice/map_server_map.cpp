@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include <opencv2/core.hpp>
 #include <yaml-cpp/yaml.h>
+#include <opencv2/core.hpp>
 
 #include "amha_planner/lattice/image_file.h"
 #include "amha_planner/lattice/map_loaders.h"
@@ -53,7 +53,8 @@ bool headerSize(const std::string& path, std::uint64_t* w, std::uint64_t* h) {
     for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(b[i + k]);
     return v;
   };
-  if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0) {
+  if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0 &&
+      std::memcmp(b + 12, "IHDR", 4) == 0) {
     *w = be32(16);
     *h = be32(20);
     return true;
@@ -170,11 +171,13 @@ MapServerYaml readMapServerYaml(const std::string& file) {
 std::vector<std::int8_t> mapServerOccupancy(const MapServerYaml& y, int* width, int* height) {
   auto too_big = [&](std::uint64_t w, std::uint64_t h) {
     std::ostringstream m;
-    m << "the image is " << w << " x " << h << " pixels, more than the " << kMaxCells << " cells a map may have";
+    m << "the image is " << w << " x " << h << " pixels, more than the " << kMaxCells
+      << " cells a map may have";
     fail(y.image, m.str());
   };
   std::uint64_t header_w = 0, header_h = 0;
-  if (headerSize(y.image, &header_w, &header_h) && header_w * header_h > kMaxCells) too_big(header_w, header_h);
+  if (headerSize(y.image, &header_w, &header_h) && header_w * header_h > kMaxCells)
+    too_big(header_w, header_h);
   cv::Mat img;
   try {
     img = readImageFile(y.image, ImageReadMode::kAsIs);  // loads the codecs module on first use
@@ -195,7 +198,8 @@ std::vector<std::int8_t> mapServerOccupancy(const MapServerYaml& y, int* width, 
   }
   const bool has_alpha = channels == 2 || channels == 4;
   // map_server: trinary mode averages alpha in with the colours; other modes leave it out.
-  const int avg_channels = (y.mode == MapServerMode::kTrinary || !has_alpha) ? channels : channels - 1;
+  const int avg_channels =
+      (y.mode == MapServerMode::kTrinary || !has_alpha) ? channels : channels - 1;
   const int w = img.cols, h = img.rows;
   std::vector<std::int8_t> data(static_cast<std::size_t>(w) * h);
   for (int j = 0; j < h; ++j) {

@@ -32,8 +32,10 @@ int headerValue(std::istream& in, const std::string& file, int& line, const char
   std::istringstream ls(s);
   std::string k;
   long v = 0;
-  if (!(ls >> k >> v) || k != key) fail(file, line, std::string("expected '") + key + " N', found '" + s + "'");
-  if (v <= 0 || v > 1000000) fail(file, line, std::string(key) + " " + std::to_string(v) + " is not in 1..1000000");
+  if (!(ls >> k >> v) || k != key)
+    fail(file, line, std::string("expected '") + key + " N', found '" + s + "'");
+  if (v <= 0 || v > 1000000)
+    fail(file, line, std::string(key) + " " + std::to_string(v) + " is not in 1..1000000");
   return static_cast<int>(v);
 }
 
@@ -43,7 +45,8 @@ GridMap loadMovingAiMap(const std::string& file, double resolution, int upscale)
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     fail(file, 0, "the resolution must be positive (Moving AI maps have no scale: choose one)");
   }
-  if (upscale < 1 || upscale > 64) fail(file, 0, "upscale factor " + std::to_string(upscale) + " is not in 1..64");
+  if (upscale < 1 || upscale > 64)
+    fail(file, 0, "upscale factor " + std::to_string(upscale) + " is not in 1..64");
   std::ifstream in(file);
   if (!in) fail(file, 0, "cannot open the file");
   int line = 0;
@@ -52,12 +55,14 @@ GridMap loadMovingAiMap(const std::string& file, double resolution, int upscale)
   {
     std::istringstream ls(s);
     std::string k, v;
-    if (!(ls >> k >> v) || k != "type") fail(file, line, "expected 'type octile', found '" + s + "'");
+    if (!(ls >> k >> v) || k != "type")
+      fail(file, line, "expected 'type octile', found '" + s + "'");
   }
   const int h = headerValue(in, file, line, "height");
   const int w = headerValue(in, file, line, "width");
   if (!getLine(in, s, line) || s != "map") fail(file, line, "expected 'map'");
-  const std::size_t cells = static_cast<std::size_t>(w) * upscale * static_cast<std::size_t>(h) * upscale;
+  const std::size_t cells =
+      static_cast<std::size_t>(w) * upscale * static_cast<std::size_t>(h) * upscale;
   if (cells > (std::size_t{1} << 26)) {
     fail(file, 0, "upscaled map would have " + std::to_string(cells) + " cells (limit 2^26)");
   }
@@ -67,18 +72,31 @@ GridMap loadMovingAiMap(const std::string& file, double resolution, int upscale)
   map.resolution = resolution;
   map.cost.assign(cells, kFreeCost);
   for (int r = 0; r < h; ++r) {
-    if (!getLine(in, s, line)) fail(file, line + 1, "missing map row " + std::to_string(r + 1) + " of " + std::to_string(h));
+    if (!getLine(in, s, line))
+      fail(file, line + 1, "missing map row " + std::to_string(r + 1) + " of " + std::to_string(h));
     if (static_cast<int>(s.size()) != w) {
-      fail(file, line, "row has " + std::to_string(s.size()) + " characters, width is " + std::to_string(w));
+      fail(file, line,
+           "row has " + std::to_string(s.size()) + " characters, width is " + std::to_string(w));
     }
     const int y0 = (h - 1 - r) * upscale;  // file row 0 is the top of the map
     for (int c = 0; c < w; ++c) {
       std::uint8_t cost;
       switch (s[c]) {
-        case '.': case 'G': case 'S': cost = kFreeCost; break;
-        case '@': case 'O': case 'T': case 'W': cost = kLethalCost; break;
+        case '.':
+        case 'G':
+        case 'S':
+          cost = kFreeCost;
+          break;
+        case '@':
+        case 'O':
+        case 'T':
+        case 'W':
+          cost = kLethalCost;
+          break;
         default:
-          fail(file, line, std::string("unknown terrain character '") + s[c] + "' in column " + std::to_string(c + 1));
+          fail(file, line,
+               std::string("unknown terrain character '") + s[c] + "' in column " +
+                   std::to_string(c + 1));
       }
       if (cost == kFreeCost) continue;
       for (int dy = 0; dy < upscale; ++dy) {
@@ -88,7 +106,8 @@ GridMap loadMovingAiMap(const std::string& file, double resolution, int upscale)
     }
   }
   while (getLine(in, s, line)) {
-    if (s.find_first_not_of(" \t") != std::string::npos) fail(file, line, "unexpected text after the last map row");
+    if (s.find_first_not_of(" \t") != std::string::npos)
+      fail(file, line, "unexpected text after the last map row");
   }
   return map;
 }

@@ -35,8 +35,10 @@ void describeShape(const PrimitiveSet& set, MotionPrimitive& p) {
   for (std::size_t k = 1; k < p.poses.size(); ++k) {
     length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
   }
-  const double turn = angleDistance(set.heading_angles[p.start_heading], set.heading_angles[p.end_heading]);
-  p.arc_length = p.turning_radius != 0.0 ? std::min(length, std::fabs(p.turning_radius) * turn) : 0.0;
+  const double turn =
+      angleDistance(set.heading_angles[p.start_heading], set.heading_angles[p.end_heading]);
+  p.arc_length =
+      p.turning_radius != 0.0 ? std::min(length, std::fabs(p.turning_radius) * turn) : 0.0;
   p.straight_length = length - p.arc_length;
   const double phi = set.heading_angles[p.start_heading];
   for (std::size_t k = 1; k < p.poses.size(); ++k) {
@@ -77,14 +79,17 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
     for (int i = 0; i < n; ++i) {
       t.expect("angle:" + std::to_string(i));
       const double a = t.number("an angle in radians");
-      if (a < 0.0 || a >= 2.0 * M_PI) t.fail("angle " + str(a) + " of heading " + std::to_string(i) + " is not in [0, 2 pi)");
-      if (i > 0 && a <= set.heading_angles[i - 1]) t.fail("heading angles must increase (angle:" + std::to_string(i) + ")");
+      if (a < 0.0 || a >= 2.0 * M_PI)
+        t.fail("angle " + str(a) + " of heading " + std::to_string(i) + " is not in [0, 2 pi)");
+      if (i > 0 && a <= set.heading_angles[i - 1])
+        t.fail("heading angles must increase (angle:" + std::to_string(i) + ")");
       set.heading_angles[i] = a;
     }
   }
   t.expect("totalnumberofprimitives:");
   const long total = t.integer("the number of primitives");
-  if (total < 1 || total > 1000000) t.fail("totalnumberofprimitives " + std::to_string(total) + " is not in 1..1000000");
+  if (total < 1 || total > 1000000)
+    t.fail("totalnumberofprimitives " + std::to_string(total) + " is not in 1..1000000");
 
   const double res = set.resolution;
   set.primitives.reserve(total);
@@ -100,7 +105,8 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
     p.id = static_cast<int>(id);
     t.expect("startangle_c:");
     const long a = t.integer("startangle_c");
-    if (a < 0 || a >= n) t.fail("startangle_c " + std::to_string(a) + " is not in 0.." + std::to_string(n - 1));
+    if (a < 0 || a >= n)
+      t.fail("startangle_c " + std::to_string(a) + " is not in 0.." + std::to_string(n - 1));
     p.start_heading = static_cast<int>(a);
     t.expect("endpose_c:");
     const long dx = t.integer("endpose_c x"), dy = t.integer("endpose_c y");
@@ -111,14 +117,16 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
     p.end_heading = static_cast<int>(((et % n) + n) % n);
     t.expect("additionalactioncostmult:");
     p.cost_multiplier = t.number("additionalactioncostmult");
-    if (!(p.cost_multiplier > 0.0)) t.fail("additionalactioncostmult " + str(p.cost_multiplier) + " must be positive");
+    if (!(p.cost_multiplier > 0.0))
+      t.fail("additionalactioncostmult " + str(p.cost_multiplier) + " must be positive");
     if (!set.uniform) {
       t.expect("turning_radius:");
       p.turning_radius = t.number("turning_radius");  // signed in SBPL's files: < 0 turns right
     }
     t.expect("intermediateposes:");
     const long count = t.integer("the number of intermediate poses");
-    if (count < 1 || count > 100000) t.fail("intermediateposes " + std::to_string(count) + " is not in 1..100000");
+    if (count < 1 || count > 100000)
+      t.fail("intermediateposes " + std::to_string(count) + " is not in 1..100000");
     p.poses.resize(count);
     for (long i = 0; i < count; ++i) {
       Pose2D& q = p.poses[i];
@@ -132,16 +140,18 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
       length += std::hypot(p.poses[i].x - p.poses[i - 1].x, p.poses[i].y - p.poses[i - 1].y);
     }
     if (!(length / res <= kMaxPrimitiveCells)) {
-      t.failAt(pose_line, "primID " + std::to_string(p.id) + " (start heading " + std::to_string(p.start_heading) +
-                              "): its intermediate poses are " + str(length / res) + " cells long (at most " +
+      t.failAt(pose_line, "primID " + std::to_string(p.id) + " (start heading " +
+                              std::to_string(p.start_heading) + "): its intermediate poses are " +
+                              str(length / res) + " cells long (at most " +
                               str(kMaxPrimitiveCells) + ")");
     }
     // The first pose is the start cell's centre at the start heading.
     const Pose2D& first = p.poses.front();
     if (floorDiv((0.5 * res + first.x) / res) != 0 || floorDiv((0.5 * res + first.y) / res) != 0 ||
         set.headingIndex(first.theta) != p.start_heading) {
-      t.failAt(prim_line, "primID " + std::to_string(p.id) + " (start heading " + std::to_string(p.start_heading) +
-                              "): first intermediate pose " + str(first.x) + " " + str(first.y) + " " + str(first.theta) +
+      t.failAt(prim_line, "primID " + std::to_string(p.id) + " (start heading " +
+                              std::to_string(p.start_heading) + "): first intermediate pose " +
+                              str(first.x) + " " + str(first.y) + " " + str(first.theta) +
                               " is not in the start cell at the start heading");
     }
     // The last pose must discretise to endpose_c (SBPL's check, in cells from the centre).
@@ -149,11 +159,13 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
     const int ex = floorDiv((0.5 * res + last.x) / res), ey = floorDiv((0.5 * res + last.y) / res);
     const int eh = set.headingIndex(last.theta);
     if (ex != p.end_dx || ey != p.end_dy || eh != p.end_heading) {
-      t.failAt(pose_line, "primID " + std::to_string(p.id) + " (start heading " + std::to_string(p.start_heading) +
-                              "): last intermediate pose " + str(last.x) + " " + str(last.y) + " " + str(last.theta) +
-                              " discretises to " + std::to_string(ex) + " " + std::to_string(ey) + " " +
-                              std::to_string(eh) + ", not endpose_c " + std::to_string(p.end_dx) + " " +
-                              std::to_string(p.end_dy) + " " + std::to_string(p.end_heading));
+      t.failAt(pose_line, "primID " + std::to_string(p.id) + " (start heading " +
+                              std::to_string(p.start_heading) + "): last intermediate pose " +
+                              str(last.x) + " " + str(last.y) + " " + str(last.theta) +
+                              " discretises to " + std::to_string(ex) + " " + std::to_string(ey) +
+                              " " + std::to_string(eh) + ", not endpose_c " +
+                              std::to_string(p.end_dx) + " " + std::to_string(p.end_dy) + " " +
+                              std::to_string(p.end_heading));
     }
     set.primitives.push_back(std::move(p));
   }
@@ -161,7 +173,9 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
   if (!extra.empty()) t.fail("unexpected '" + extra + "' after the last primitive");
 
   std::stable_sort(set.primitives.begin(), set.primitives.end(),
-                   [](const MotionPrimitive& a, const MotionPrimitive& b) { return a.start_heading < b.start_heading; });
+                   [](const MotionPrimitive& a, const MotionPrimitive& b) {
+                     return a.start_heading < b.start_heading;
+                   });
   const std::size_t per = set.primitives.size() / n;
   for (int h = 0; h < n; ++h) {
     const auto r = set.range(h);
@@ -173,7 +187,8 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
     for (std::size_t i = r.first; i < r.second; ++i) {
       for (std::size_t j = r.first; j < i; ++j) {
         if (set.primitives[i].id == set.primitives[j].id) {
-          t.fail("primID " + std::to_string(set.primitives[i].id) + " appears twice for start heading " + std::to_string(h));
+          t.fail("primID " + std::to_string(set.primitives[i].id) +
+                 " appears twice for start heading " + std::to_string(h));
         }
       }
     }

@@ -35,9 +35,12 @@ void writeMprim(std::ostream& out, const PrimitiveSet& set) {
   out << "totalnumberofprimitives: " << per * set.num_headings << "\n";
   for (int h = 0; h < set.num_headings; ++h) {
     const auto r = set.range(h);
-    if (r.first == r.second) throw LatticeError(LatticeError::Kind::kPrimitives, "heading " + std::to_string(h) + " has no primitives");
+    if (r.first == r.second)
+      throw LatticeError(LatticeError::Kind::kPrimitives,
+                         "heading " + std::to_string(h) + " has no primitives");
     int next_id = 0;
-    for (std::size_t i = r.first; i < r.second; ++i) next_id = std::max(next_id, set.primitives[i].id + 1);
+    for (std::size_t i = r.first; i < r.second; ++i)
+      next_id = std::max(next_id, set.primitives[i].id + 1);
     for (std::size_t k = 0; k < per; ++k) {
       const bool copy = r.first + k >= r.second;  // padding: the first again, with a new primID
       const MotionPrimitive& p = set.primitives[copy ? r.first : r.first + k];
@@ -46,11 +49,13 @@ void writeMprim(std::ostream& out, const PrimitiveSet& set) {
       out << "endpose_c: " << p.end_dx << " " << p.end_dy << " " << p.end_heading << "\n";
       const double m = p.cost_multiplier;
       // SBPL reads an integer multiplier: write integers as such (ours also reads decimals).
-      out << "additionalactioncostmult: " << (m == std::floor(m) ? fmt("%.0f", m) : fmt("%.6f", m)) << "\n";
+      out << "additionalactioncostmult: " << (m == std::floor(m) ? fmt("%.0f", m) : fmt("%.6f", m))
+          << "\n";
       if (!set.uniform) out << "turning_radius: " << fmt("%.6f", p.turning_radius) << "\n";
       out << "intermediateposes: " << p.poses.size() << "\n";
       for (const Pose2D& q : p.poses) {
-        out << fmt("%.6f", q.x) << " " << fmt("%.6f", q.y) << " " << fmt("%.6f", normalizeAngle(q.theta)) << "\n";
+        out << fmt("%.6f", q.x) << " " << fmt("%.6f", q.y) << " "
+            << fmt("%.6f", normalizeAngle(q.theta)) << "\n";
       }
     }
   }

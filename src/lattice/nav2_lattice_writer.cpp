@@ -52,7 +52,9 @@ void writeNav2Lattice(std::ostream& out, const PrimitiveSet& set) {
   }
   json angles = json::array();
   for (double a : set.heading_angles) angles.push_back(a);
-  const std::string model = !set.motion_model.empty() ? set.motion_model : turns_on_the_spot ? "diff" : "ackermann";
+  const std::string model = !set.motion_model.empty() ? set.motion_model
+                            : turns_on_the_spot       ? "diff"
+                                                      : "ackermann";
   const json doc = {{"version", 1.0},
                     {"date_generated", today()},
                     {"lattice_metadata",

@@ -26,12 +26,13 @@ using detail::Vec;
 
 // A candidate, small: many wait in the queue. Its shape is computed again if it is kept.
 struct Candidate {
-  double length = 0.0;  // metres
+  double length = 0.0;     // metres
   int start = 0, end = 0;  // headings; start is a first-octant heading
   Vec cell{0, 0};
 
   bool operator>(const Candidate& o) const {
-    return std::tie(length, start, end, cell.y, cell.x) > std::tie(o.length, o.start, o.end, o.cell.y, o.cell.x);
+    return std::tie(length, start, end, cell.y, cell.x) >
+           std::tie(o.length, o.start, o.end, o.cell.y, o.cell.x);
   }
 };
 
@@ -44,11 +45,13 @@ struct Shape {
 // and a straight, one of the straights empty: the arc is tangent to both headings' lines, at
 // equal distance from where they cross. Its length, or 0 if the lines cross behind the start
 // or beyond the end, or the arc's radius would be below rmin.
-double arcCurve(double phi0, double phi1, double ex, double ey, double rmin, Shape* shape = nullptr) {
+double arcCurve(double phi0, double phi1, double ex, double ey, double rmin,
+                Shape* shape = nullptr) {
   const double delta = std::remainder(phi1 - phi0, 2.0 * M_PI);
   const double sd = std::sin(delta);
   if (std::fabs(sd) < 1e-9) return 0.0;
-  const double u0x = std::cos(phi0), u0y = std::sin(phi0), u1x = std::cos(phi1), u1y = std::sin(phi1);
+  const double u0x = std::cos(phi0), u0y = std::sin(phi0), u1x = std::cos(phi1),
+               u1y = std::sin(phi1);
   // t0 u0 + t1 u1 = e: the lines cross t0 along the start's heading, t1 before the end.
   const double t0 = (ex * u1y - ey * u1x) / sd, t1 = (u0x * ey - u0y * ex) / sd;
   if (t0 < -1e-9 || t1 < -1e-9) return 0.0;
@@ -89,7 +92,8 @@ class CompositionTable {
  public:
   CompositionTable(int headings, int sources, int radius)
       : n_(headings), r_(radius), side_(2 * radius + 1), edges_(headings), sources_(sources) {
-    for (Source& s : sources_) s.dist.assign(static_cast<std::size_t>(side_) * side_ * headings, kInf);
+    for (Source& s : sources_)
+      s.dist.assign(static_cast<std::size_t>(side_) * side_ * headings, kInf);
     for (int s = 0; s < sources; ++s) {
       sources_[s].dist[index(0, 0, s)] = 0.0f;
       sources_[s].queue.emplace(0.0f, 0, 0, s);
@@ -160,8 +164,10 @@ class CompositionTable {
 
 PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
   detail::validateGeneratorOptions(o);
-  if (!(o.tolerance >= 0.0 && o.tolerance <= 1.0)) detail::generatorError("the tolerance must be in [0, 1]");
-  if (o.end_tolerance < 0 || o.end_tolerance > 3) detail::generatorError("the end tolerance must be 0 .. 3 cells");
+  if (!(o.tolerance >= 0.0 && o.tolerance <= 1.0))
+    detail::generatorError("the tolerance must be in [0, 1]");
+  if (o.end_tolerance < 0 || o.end_tolerance > 3)
+    detail::generatorError("the end tolerance must be 0 .. 3 cells");
   const int n = o.num_headings, m = n / 8;
   const std::vector<Vec> dirs = detail::headingVectors(n);
   PrimitiveSet set = detail::latticeSet(o, dirs);
@@ -171,11 +177,15 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
   const double max_length = (M_PI / 2.0 + 2.0) * rmin + 4.0 * res;
   const int reach = static_cast<int>(std::ceil(max_length / res));
   const int table_radius = static_cast<int>(std::ceil((1.0 + o.tolerance) * max_length / res)) + 1;
-  const double table_size = static_cast<double>(m + 1) * n * (2.0 * table_radius + 1) * (2.0 * table_radius + 1);
+  const double table_size =
+      static_cast<double>(m + 1) * n * (2.0 * table_radius + 1) * (2.0 * table_radius + 1);
   if (table_size > 3e7) {
     char what[160];
-    std::snprintf(what, sizeof what, "a turning radius of %.1f cells with %d headings is too large for the near-minimal "
-                  "generator (use the legacy generator)", rmin / res, n);
+    std::snprintf(
+        what, sizeof what,
+        "a turning radius of %.1f cells with %d headings is too large for the near-minimal "
+        "generator (use the legacy generator)",
+        rmin / res, n);
     detail::generatorError(what);
   }
   const std::vector<Symmetry> group = symmetries();
@@ -214,7 +224,7 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
 
   CompositionTable table(n, m + 1, table_radius);
   std::vector<std::pair<Candidate, Symmetry>> kept;  // every image of the kept candidates, once
-  std::set<std::tuple<int, int, int, int>> images;  // (start, dx, dy, end) of the whole set
+  std::set<std::tuple<int, int, int, int>> images;   // (start, dx, dy, end) of the whole set
   const int quiet_rings = std::max(5, static_cast<int>(std::ceil(0.5 * rmin / res)));
   const int first_ring_that_counts = static_cast<int>(std::ceil(M_PI / 2.0 * rmin / res));
   int quiet = 0;
@@ -231,7 +241,8 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
       double composed = std::numeric_limits<double>::infinity();
       for (int dy = -near; dy <= near; ++dy) {
         for (int dx = -near; dx <= near; ++dx) {
-          composed = std::min<double>(composed, table.distance(c.start, c.cell.x + dx, c.cell.y + dy, c.end));
+          composed = std::min<double>(composed,
+                                      table.distance(c.start, c.cell.x + dx, c.cell.y + dy, c.end));
         }
       }
       if (composed <= (1.0 + o.tolerance) * c.length + 1e-6) continue;
@@ -257,7 +268,8 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
     if (c.end == c.start) {
       shape.pieces = {{c.length, 0.0}};
     } else {
-      arcCurve(set.heading_angles[c.start], set.heading_angles[c.end], c.cell.x * res, c.cell.y * res, rmin, &shape);
+      arcCurve(set.heading_angles[c.start], set.heading_angles[c.end], c.cell.x * res,
+               c.cell.y * res, rmin, &shape);
     }
     MotionPrimitive base;
     base.start_heading = c.start;
@@ -265,20 +277,23 @@ PrimitiveSet generateNearMinimalPrimitives(const PrimitiveGeneratorOptions& o) {
     base.end_dx = c.cell.x;
     base.end_dy = c.cell.y;
     base.turning_radius = shape.radius;
-    for (const Piece& p : shape.pieces) (p.curvature != 0.0 ? base.arc_length : base.straight_length) += p.length;
+    for (const Piece& p : shape.pieces)
+      (p.curvature != 0.0 ? base.arc_length : base.straight_length) += p.length;
     base.poses = detail::samplePath(set.heading_angles[c.start], shape.pieces, 0.5 * res, 0.0);
     all.push_back(detail::transformed(base, g, headingOf(g.apply(dirs[c.start])), dirs, set));
   }
   if (o.turn_in_place && o.motion_model != MotionModel::kAckermann) {
     for (int h = 0; h < n; ++h) {
-      for (int side : {+1, -1}) all.push_back(detail::turnOnTheSpot(set, h, side, o.turn_in_place_multiplier));
+      for (int side : {+1, -1})
+        all.push_back(detail::turnOnTheSpot(set, h, side, o.turn_in_place_multiplier));
     }
   }
   if (o.motion_model == MotionModel::kOmni) {
     // Sideways: the shortest straight of the heading a quarter turn away, keeping the heading.
     std::vector<MotionPrimitive> sideways;
     for (const MotionPrimitive& p : all) {
-      if (p.turning_radius != 0.0 || p.end_heading != p.start_heading || p.poses.size() < 2) continue;
+      if (p.turning_radius != 0.0 || p.end_heading != p.start_heading || p.poses.size() < 2)
+        continue;
       const Vec v = dirs[p.start_heading];
       if (p.end_dx != v.x || p.end_dy != v.y) continue;  // only the one-vector straight
       for (int side : {+1, -1}) {

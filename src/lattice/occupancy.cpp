@@ -40,7 +40,8 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
   }
   if (resolution < kMinResolution || resolution > kMaxResolution) {
     std::ostringstream m;
-    m << "resolution " << resolution << " m is outside [" << kMinResolution << ", " << kMaxResolution << "]";
+    m << "resolution " << resolution << " m is outside [" << kMinResolution << ", "
+      << kMaxResolution << "]";
     fail(m.str());
   }
   if (!std::isfinite(origin_x) || !std::isfinite(origin_y) || !std::isfinite(origin_yaw)) {
@@ -48,7 +49,8 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
   }
   if (std::fabs(origin_x) > kMaxOriginMagnitude || std::fabs(origin_y) > kMaxOriginMagnitude) {
     std::ostringstream m;
-    m << "origin (" << origin_x << ", " << origin_y << ") is farther than " << kMaxOriginMagnitude << " m";
+    m << "origin (" << origin_x << ", " << origin_y << ") is farther than " << kMaxOriginMagnitude
+      << " m";
     fail(m.str());
   }
   if (std::fabs(origin_yaw) > kMaxOriginYaw) {
@@ -76,7 +78,8 @@ GridMap gridMapFromOccupancy(int width, int height, double resolution, double or
   map.origin_yaw = origin_yaw;
   map.cost.resize(cells);
   std::uint8_t table[256];
-  for (int v = -128; v < 128; ++v) table[static_cast<std::uint8_t>(v)] = occupancyToCost(v, conversion);
+  for (int v = -128; v < 128; ++v)
+    table[static_cast<std::uint8_t>(v)] = occupancyToCost(v, conversion);
   for (std::size_t i = 0; i < cells; ++i) map.cost[i] = table[static_cast<std::uint8_t>(data[i])];
   return map;
 }

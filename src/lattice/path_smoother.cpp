@@ -36,7 +36,8 @@ MotionKind motionKind(const MotionPrimitive& p) {
     const Pose2D& b = p.poses[k];
     const double dx = b.x - a.x, dy = b.y - a.y;
     if (std::hypot(dx, dy) < 1e-12) {
-      if (std::fabs(std::remainder(b.theta - a.theta, 2.0 * M_PI)) > 1e-12) return MotionKind::kMixed;
+      if (std::fabs(std::remainder(b.theta - a.theta, 2.0 * M_PI)) > 1e-12)
+        return MotionKind::kMixed;
       continue;
     }
     const double along_a = dx * std::cos(a.theta) + dy * std::sin(a.theta);
@@ -81,14 +82,16 @@ double modelTurningRadius(const LatticeGraph& graph) {
   for (const MotionPrimitive& p : graph.primitives().primitives) {
     const MotionKind m = motionKind(p);
     if (m != MotionKind::kForward && m != MotionKind::kBackward) continue;
-    for (std::size_t k = 1; k < p.poses.size(); ++k) curvature = std::max(curvature, stepCurvature(p.poses[k - 1], p.poses[k]));
+    for (std::size_t k = 1; k < p.poses.size(); ++k)
+      curvature = std::max(curvature, stepCurvature(p.poses[k - 1], p.poses[k]));
   }
   return curvature > 0.0 ? 1.0 / curvature : std::numeric_limits<double>::infinity();
 }
 
 double longestPrimitiveLength(const LatticeGraph& graph) {
   double longest = 0.0;
-  for (const MotionPrimitive& p : graph.primitives().primitives) longest = std::max(longest, polylineLength(p.poses));
+  for (const MotionPrimitive& p : graph.primitives().primitives)
+    longest = std::max(longest, polylineLength(p.poses));
   return longest;
 }
 
@@ -117,8 +120,8 @@ PathSmoother::PathSmoother(const LatticeGraph& graph, const SmootherOptions& opt
   if (!std::isfinite(options.turning_radius) || options.turning_radius < 0.0 ||
       (options.turning_radius > 0.0 && options.turning_radius < model * (1.0 - 1e-9))) {
     std::ostringstream m;
-    m << "smoothing turning radius " << options.turning_radius << " m: must be finite and at least the motion model's "
-      << model << " m (0: the model's)";
+    m << "smoothing turning radius " << options.turning_radius
+      << " m: must be finite and at least the motion model's " << model << " m (0: the model's)";
     throw std::invalid_argument(m.str());
   }
   piece_length_ = std::max(longestPrimitiveLength(graph), graph.map().resolution);
@@ -131,7 +134,8 @@ PathSmoother::PathSmoother(const LatticeGraph& graph, const SmootherOptions& opt
   }
 }
 
-std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& poses, std::vector<Pose2D>& g) const {
+std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& poses,
+                                                    std::vector<Pose2D>& g) const {
   const GridMap& m = graph_.map();
   const PrimitiveSet& set = graph_.primitives();
   const double res = m.resolution, co = std::cos(m.origin_yaw), so = std::sin(m.origin_yaw);
@@ -163,7 +167,8 @@ std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& p
     if (best[k] == inf) continue;
     reached = k;
     collides = false;
-    const int x = static_cast<int>(std::floor(g[k].x / res)), y = static_cast<int>(std::floor(g[k].y / res));
+    const int x = static_cast<int>(std::floor(g[k].x / res)),
+              y = static_cast<int>(std::floor(g[k].y / res));
     if (x < 0 || y < 0 || x >= m.width || y >= m.height) continue;
     // The state a motion ended in: its last pose discretises to it (as the .mprim reader
     // checks), but need not be its exact centre (files round their poses).
@@ -191,8 +196,10 @@ std::vector<PathSmoother::Edge> PathSmoother::parse(const std::vector<Pose2D>& p
   }
   if (best[n - 1] == inf) {
     throw std::invalid_argument(
-        "not a path of this lattice: no valid motion of its primitives explains the poses after pose " +
-        std::to_string(reached) + (collides ? " (the motion that matches them collides or leaves the map)" : ""));
+        "not a path of this lattice: no valid motion of its primitives explains the poses after "
+        "pose " +
+        std::to_string(reached) +
+        (collides ? " (the motion that matches them collides or leaves the map)" : ""));
   }
   std::vector<Edge> edges;
   for (std::size_t k = n - 1; k > 0; k = via[k].first) edges.push_back(via[k]);
@@ -256,12 +263,12 @@ inline bool boxBlocked(const GridMap& m, int x0, int y0, const CellBox& b) {
 struct PathSmoother::Scratch {
   std::vector<CellPoint> prev, cur;
   std::vector<CellOffset> cells;
-  std::vector<double> along;  // path length from the first pose to each (metres)
+  std::vector<double> along;      // path length from the first pose to each (metres)
   std::vector<std::size_t> near;  // footprint edges with a blocked cell near them in a step
 };
 
-bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, std::size_t first, std::size_t last,
-                             Scratch& scratch) const {
+bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, std::size_t first,
+                             std::size_t last, Scratch& scratch) const {
   const GridMap& m = graph_.map();
   const double res = m.resolution;
   const RobotFootprint& f = graph_.footprint();
@@ -270,11 +277,13 @@ bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, s
   const std::size_t mid = (first + last) / 2;
   const std::vector<double>& along = scratch.along;
   const double before = along[mid] - along[first], after = along[last] - along[mid];
-  if (provablyFree(x0 + 0.5 + poses[mid].x / res, y0 + 0.5 + poses[mid].y / res, std::max(before, after) / res)) {
+  if (provablyFree(x0 + 0.5 + poses[mid].x / res, y0 + 0.5 + poses[mid].y / res,
+                   std::max(before, after) / res)) {
     return true;
   }
   if (last - first > 1) {
-    return sweepFree(x0, y0, poses, first, mid, scratch) && sweepFree(x0, y0, poses, mid, last, scratch);
+    return sweepFree(x0, y0, poses, first, mid, scratch) &&
+           sweepFree(x0, y0, poses, mid, last, scratch);
   }
   // One step: the cells primitiveCells would give it, rasterised only for the edges with a
   // blocked cell near them (then the exact cells decide).
@@ -287,7 +296,9 @@ bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, s
   footprintInCells(f, a, res, prev);
   // No vertex moves farther than the step's length plus its radius times the turn: a box that
   // far around an edge's first position holds all of its positions in the step.
-  const double move = (std::hypot(b.x - a.x, b.y - a.y) + f.circumscribed_radius * std::fabs(smallAngle(b.theta - a.theta))) / res;
+  const double move = (std::hypot(b.x - a.x, b.y - a.y) +
+                       f.circumscribed_radius * std::fabs(smallAngle(b.theta - a.theta))) /
+                      res;
   const std::size_t vertices = prev.size();
   near.clear();
   for (std::size_t e = 0; e < vertices; ++e) {
@@ -307,13 +318,15 @@ bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, s
       footprintInCells(f, sample, res, cur);
     }
     for (std::size_t e : near) {
-      const std::array<CellPoint, 2> from{prev[e], prev[(e + 1) % vertices]}, to{cur[e], cur[(e + 1) % vertices]};
+      const std::array<CellPoint, 2> from{prev[e], prev[(e + 1) % vertices]},
+          to{cur[e], cur[(e + 1) % vertices]};
       if (!boxBlocked(m, x0, y0, CellBox::around(from, to))) continue;
       cells.clear();
       rasterizeEdgeSweep(prev, cur, e, cells);
       for (const CellOffset& o : cells) {
         const int cx = x0 + o.dx, cy = y0 + o.dy;
-        if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost) return false;
+        if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost)
+          return false;
       }
     }
     std::swap(prev, cur);
@@ -321,8 +334,9 @@ bool PathSmoother::sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, s
   return true;
 }
 
-Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses, double multiplier, Cost budget,
-                                std::vector<SmoothedPiece>* pieces, Scratch& scratch) const {
+Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses, double multiplier,
+                                Cost budget, std::vector<SmoothedPiece>* pieces,
+                                Scratch& scratch) const {
   const GridMap& m = graph_.map();
   const double res = m.resolution;
   const LatticeConfig& c = graph_.config();
@@ -339,7 +353,8 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
       rasterizePolygon(scratch.prev, cells);
       for (const CellOffset& o : cells) {
         const int cx = x0 + o.dx, cy = y0 + o.dy;
-        if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost) return kInvalidEdge;
+        if (cx < 0 || cy < 0 || cx >= m.width || cy >= m.height || m.at(cx, cy) >= kLethalCost)
+          return kInvalidEdge;
       }
     }
   }
@@ -361,8 +376,10 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
       const CellPoint pa{a.x / res + 0.5, a.y / res + 0.5}, pb{b.x / res + 0.5, b.y / res + 0.5};
       // The centre's cells; rasterised only if a box around them could change the verdict or
       // the worst cost.
-      const CellBox box(std::min(pa.x, pb.x), std::max(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.y, pb.y));
-      bool exact = x0 + box.i0 < 0 || y0 + box.j0 < 0 || x0 + box.i1 >= m.width || y0 + box.j1 >= m.height;
+      const CellBox box(std::min(pa.x, pb.x), std::max(pa.x, pb.x), std::min(pa.y, pb.y),
+                        std::max(pa.y, pb.y));
+      bool exact =
+          x0 + box.i0 < 0 || y0 + box.j0 < 0 || x0 + box.i1 >= m.width || y0 + box.j1 >= m.height;
       for (int j = box.j0; j <= box.j1 && !exact; ++j) {
         for (int i = box.i0; i <= box.i1 && !exact; ++i) exact = m.at(x0 + i, y0 + j) > worst;
       }
@@ -401,13 +418,15 @@ Cost PathSmoother::shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses
   return total;
 }
 
-Cost PathSmoother::motionCost(int x, int y, const std::vector<Pose2D>& poses, double multiplier) const {
+Cost PathSmoother::motionCost(int x, int y, const std::vector<Pose2D>& poses,
+                              double multiplier) const {
   Scratch scratch;
   return shortcutCost(x, y, poses, multiplier, std::numeric_limits<Cost>::max(), nullptr, scratch);
 }
 
-bool PathSmoother::tryShortcut(const Pose2D& a_grid, const Pose2D& b_grid, int x0, int y0, bool backward, double radius,
-                               double multiplier, Cost budget, Candidate& out, Scratch& scratch) const {
+bool PathSmoother::tryShortcut(const Pose2D& a_grid, const Pose2D& b_grid, int x0, int y0,
+                               bool backward, double radius, double multiplier, Cost budget,
+                               Candidate& out, Scratch& scratch) const {
   const double res = graph_.map().resolution;
   // From the input's pose where motion i starts to its pose where motion j - 1 ends (a file's
   // motions may end a little off the state's centre and heading: the curve meets them there),
@@ -419,7 +438,9 @@ bool PathSmoother::tryShortcut(const Pose2D& a_grid, const Pose2D& b_grid, int x
   // Hopeless by length alone (the poses' chords are within 1 % of the arcs; each piece rounds
   // up by less than a unit): no need to look at the map.
   const double pieces = std::ceil(path.totalLength() / piece_length_) + 1.0;
-  if (0.99 * kCostUnitsPerMetre * path.totalLength() * multiplier - 2.0 * pieces > static_cast<double>(budget)) return false;
+  if (0.99 * kCostUnitsPerMetre * path.totalLength() * multiplier - 2.0 * pieces >
+      static_cast<double>(budget))
+    return false;
   // A pose per cell (the generated primitives have two; arcs of the turning radius deviate
   // from their chords by less than a hundredth of a cell at 5 cm cells and 0.3 m).
   sampleDubinsPath(path, res, out.poses);
@@ -456,7 +477,8 @@ SmoothedPath PathSmoother::smooth(const std::vector<Pose2D>& input) const {
   };
   auto take = [&](const Edge& from, const Candidate& c, bool backward) {
     const std::size_t offset = out.poses.size() - 1;
-    for (std::size_t k = 1; k + 1 < c.poses.size(); ++k) out.poses.push_back(graph_.cellPoseToMap(from.x, from.y, c.poses[k]));
+    for (std::size_t k = 1; k + 1 < c.poses.size(); ++k)
+      out.poses.push_back(graph_.cellPoseToMap(from.x, from.y, c.poses[k]));
     out.poses.push_back(input[edges[c.to_edge].last]);  // the input's own pose of that state
     for (SmoothedPiece piece : c.pieces) {
       piece.first += offset;
@@ -488,11 +510,12 @@ SmoothedPath PathSmoother::smooth(const std::vector<Pose2D>& input) const {
           multiplier = std::max(multiplier, actions_[edges[k].action].multiplier);
         }
         c.to_edge = j - 1;
-        return tryShortcut(grid[edges[i].first], grid[edges[j - 1].last], edges[i].x, edges[i].y, backward, radius,
-                           multiplier, budget, c, scratch);
+        return tryShortcut(grid[edges[i].first], grid[edges[j - 1].last], edges[i].x, edges[i].y,
+                           backward, radius, multiplier, budget, c, scratch);
       };
       std::size_t ok = i + 1, fail = end + 1;  // replacing [i, ok) works, [i, fail) does not
-      if ((motion == MotionKind::kForward || motion == MotionKind::kBackward) && std::isfinite(radius_)) {
+      if ((motion == MotionKind::kForward || motion == MotionKind::kBackward) &&
+          std::isfinite(radius_)) {
         // Doubling, then bisection (the farthest reachable state, as far as the probes see).
         for (std::size_t j = i + 2; j <= end; j = std::min(end, i + 2 * (j - i))) {
           if (!attempt(j, radius_, trial)) {
@@ -523,7 +546,8 @@ SmoothedPath PathSmoother::smooth(const std::vector<Pose2D>& input) const {
     }
     begin = end;
   }
-  if (out.cost > out.lattice_cost) throw std::logic_error("path smoother: the smoothed path costs more than the lattice path");
+  if (out.cost > out.lattice_cost)
+    throw std::logic_error("path smoother: the smoothed path costs more than the lattice path");
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
@@ -533,7 +557,8 @@ LatticeSolution smoothedSolution(const LatticeSolution& raw, const SmoothedPath&
   s.poses = smoothed.poses;
   s.search.cost = smoothed.cost;
   if (raw.search.cost > 0) {
-    const double scaled = raw.search.certified_bound * static_cast<double>(smoothed.cost) / static_cast<double>(raw.search.cost);
+    const double scaled = raw.search.certified_bound * static_cast<double>(smoothed.cost) /
+                          static_cast<double>(raw.search.cost);
     s.search.certified_bound = std::min(std::max(scaled, 1.0), raw.search.nominal_bound);
   }
   return s;
@@ -548,11 +573,13 @@ SmoothedPath SmoothedStream::smoothAfterEscape(const LatticeSolution& raw) const
   if (k >= raw.poses.size()) throw std::invalid_argument("escape_poses beyond the path");
   SmoothedPath out;
   if (raw.poses.size() - k >= 2) {
-    out = smoother_.smooth(std::vector<Pose2D>(raw.poses.begin() + static_cast<std::ptrdiff_t>(k), raw.poses.end()));
+    out = smoother_.smooth(
+        std::vector<Pose2D>(raw.poses.begin() + static_cast<std::ptrdiff_t>(k), raw.poses.end()));
   } else {
     out.poses.assign(1, raw.poses.back());
   }
-  out.poses.insert(out.poses.begin(), raw.poses.begin(), raw.poses.begin() + static_cast<std::ptrdiff_t>(k));
+  out.poses.insert(out.poses.begin(), raw.poses.begin(),
+                   raw.poses.begin() + static_cast<std::ptrdiff_t>(k));
   out.cost += raw.escape_cost;
   out.lattice_cost += raw.escape_cost;
   return out;
@@ -573,16 +600,22 @@ const SmoothedStream::Step& SmoothedStream::add(const LatticeSolution& raw) {
     kept.search.cost = step_.published.search.cost;
     const double scaled = raw.search.certified_bound * static_cast<double>(kept.search.cost) /
                           static_cast<double>(std::max<Cost>(raw.search.cost, 1));
-    kept.search.certified_bound = std::min(step_.published.search.certified_bound,
-                                           std::min(std::max(scaled, 1.0), raw.search.nominal_bound));
+    kept.search.certified_bound =
+        std::min(step_.published.search.certified_bound,
+                 std::min(std::max(scaled, 1.0), raw.search.nominal_bound));
     step_.published = std::move(kept);
     step_.same_as_previous = true;
   } else {
-    step_.same_as_previous = started_ && own.poses.size() == step_.published.poses.size() &&
-                             std::equal(own.poses.begin(), own.poses.end(), step_.published.poses.begin(),
-                                        [](const Pose2D& a, const Pose2D& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; });
+    step_.same_as_previous =
+        started_ && own.poses.size() == step_.published.poses.size() &&
+        std::equal(own.poses.begin(), own.poses.end(), step_.published.poses.begin(),
+                   [](const Pose2D& a, const Pose2D& b) {
+                     return a.x == b.x && a.y == b.y && a.theta == b.theta;
+                   });
     // Costs do not rise, so the previous certified bound holds for this path too.
-    if (started_) own.search.certified_bound = std::min(own.search.certified_bound, step_.published.search.certified_bound);
+    if (started_)
+      own.search.certified_bound =
+          std::min(own.search.certified_bound, step_.published.search.certified_bound);
     step_.published = std::move(own);
   }
   step_.republished = earlier_cheaper;

@@ -16,11 +16,11 @@ namespace lattice {
 
 namespace {
 
+using detail::headingVectors;
 using detail::Piece;
+using detail::samplePath;
 using detail::Symmetry;
 using detail::Vec;
-using detail::headingVectors;
-using detail::samplePath;
 
 struct ArcSolution {
   bool found = false;
@@ -34,8 +34,10 @@ struct ArcSolution {
 ArcSolution solveArc(double psi0, double psi1, double rmin, double res) {
   const double delta = std::remainder(psi1 - psi0, 2.0 * M_PI);
   const double s = delta > 0 ? 1.0 : -1.0;
-  const double ax = s * (std::sin(psi1) - std::sin(psi0)), ay = s * (std::cos(psi0) - std::cos(psi1));
-  const double u0x = std::cos(psi0), u0y = std::sin(psi0), u1x = std::cos(psi1), u1y = std::sin(psi1);
+  const double ax = s * (std::sin(psi1) - std::sin(psi0)),
+               ay = s * (std::cos(psi0) - std::cos(psi1));
+  const double u0x = std::cos(psi0), u0y = std::sin(psi0), u1x = std::cos(psi1),
+               u1y = std::sin(psi1);
   const int window = static_cast<int>(std::ceil(3.0 * rmin / res)) + 8;
   ArcSolution best;
   double best_len = 1e18, best_l = 1e18;
@@ -59,7 +61,8 @@ ArcSolution solveArc(double psi0, double psi1, double rmin, double res) {
           best.end = {x, y};
           best.radius = r;
           const Piece straight{std::max(0.0, l), 0.0}, arc{r * std::fabs(delta), s / r};
-          best.pieces = shape == 0 ? std::vector<Piece>{straight, arc} : std::vector<Piece>{arc, straight};
+          best.pieces =
+              shape == 0 ? std::vector<Piece>{straight, arc} : std::vector<Piece>{arc, straight};
         }
       }
     }
@@ -71,8 +74,10 @@ ArcSolution solveArc(double psi0, double psi1, double rmin, double res) {
 
 PrimitiveSet generateLegacyPrimitives(const PrimitiveGeneratorOptions& o) {
   detail::validateGeneratorOptions(o);
-  if (o.motion_model == MotionModel::kOmni) detail::generatorError("the legacy generator has no omnidirectional model");
-  if (o.turning_radius / o.resolution > 2000.0) detail::generatorError("the turning radius is more than 2000 cells");
+  if (o.motion_model == MotionModel::kOmni)
+    detail::generatorError("the legacy generator has no omnidirectional model");
+  if (o.turning_radius / o.resolution > 2000.0)
+    detail::generatorError("the turning radius is more than 2000 cells");
   if (!(o.arc_multiplier > 0)) detail::generatorError("cost multipliers must be positive");
   const int n = o.num_headings, m = n / 8;
   const std::vector<Vec> dirs = headingVectors(n);
@@ -93,7 +98,8 @@ PrimitiveSet generateLegacyPrimitives(const PrimitiveGeneratorOptions& o) {
       p.end_dy = (backward ? -k : k) * v.y;
       p.end_heading = h;
       p.cost_multiplier = mult;
-      p.poses = samplePath(backward ? phi + M_PI : phi, {{k * vlen, 0.0}}, spacing, backward ? -M_PI : 0.0);
+      p.poses = samplePath(backward ? phi + M_PI : phi, {{k * vlen, 0.0}}, spacing,
+                           backward ? -M_PI : 0.0);
       p.straight_length = k * vlen;
       p.reverse = backward;
       out.push_back(std::move(p));
@@ -107,7 +113,9 @@ PrimitiveSet generateLegacyPrimitives(const PrimitiveGeneratorOptions& o) {
         const double phi1 = set.heading_angles[h1];
         const double offset = backward ? M_PI : 0.0;  // travel direction vs heading
         const ArcSolution a = solveArc(phi + offset, phi1 + offset, o.turning_radius, res);
-        if (!a.found) detail::generatorError("no arc from heading " + std::to_string(h) + " to " + std::to_string(h1));
+        if (!a.found)
+          detail::generatorError("no arc from heading " + std::to_string(h) + " to " +
+                                 std::to_string(h1));
         MotionPrimitive p;
         p.end_dx = a.end.x;
         p.end_dy = a.end.y;
@@ -122,7 +130,8 @@ PrimitiveSet generateLegacyPrimitives(const PrimitiveGeneratorOptions& o) {
       }
     }
     if (o.turn_in_place && o.motion_model != MotionModel::kAckermann) {
-      for (int side : {+1, -1}) out.push_back(detail::turnOnTheSpot(set, h, side, o.turn_in_place_multiplier));
+      for (int side : {+1, -1})
+        out.push_back(detail::turnOnTheSpot(set, h, side, o.turn_in_place_multiplier));
     }
   }
 

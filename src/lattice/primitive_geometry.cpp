@@ -48,7 +48,8 @@ std::vector<Vec> headingVectors(int n) {
     return all;
   }
   throw LatticeError(LatticeError::Kind::kConfig,
-                     "primitive generator: cannot choose lattice directions for " + std::to_string(n) + " headings");
+                     "primitive generator: cannot choose lattice directions for " +
+                         std::to_string(n) + " headings");
 }
 
 std::vector<Pose2D> samplePath(double theta0, const std::vector<Piece>& pieces, double spacing,
@@ -97,11 +98,13 @@ void validateGeneratorOptions(const PrimitiveGeneratorOptions& o) {
   const auto fail = generatorError;
   if (!(o.resolution > 0.0) || !std::isfinite(o.resolution)) fail("resolution must be positive");
   if (o.num_headings < 8 || o.num_headings % 8 != 0 || o.num_headings > 256) {
-    fail("the number of headings must be a multiple of 8 in 8..256, not " + std::to_string(o.num_headings));
+    fail("the number of headings must be a multiple of 8 in 8..256, not " +
+         std::to_string(o.num_headings));
   }
-  if (!(o.turning_radius > 0.0) || !std::isfinite(o.turning_radius)) fail("the turning radius must be positive");
-  if (!(o.reverse_multiplier > 0) || !(o.turn_in_place_multiplier > 0) || !std::isfinite(o.reverse_multiplier) ||
-      !std::isfinite(o.turn_in_place_multiplier)) {
+  if (!(o.turning_radius > 0.0) || !std::isfinite(o.turning_radius))
+    fail("the turning radius must be positive");
+  if (!(o.reverse_multiplier > 0) || !(o.turn_in_place_multiplier > 0) ||
+      !std::isfinite(o.reverse_multiplier) || !std::isfinite(o.turn_in_place_multiplier)) {
     fail("cost multipliers must be positive");
   }
 }
@@ -140,7 +143,8 @@ Pose2D Symmetry::apply(const Pose2D& p) const {
 
 MotionPrimitive turnOnTheSpot(const PrimitiveSet& set, int h, int side, double multiplier) {
   const int n = set.num_headings, h1 = (h + side + n) % n;
-  const double phi = set.heading_angles[h], d = std::remainder(set.heading_angles[h1] - phi, 2.0 * M_PI);
+  const double phi = set.heading_angles[h],
+               d = std::remainder(set.heading_angles[h1] - phi, 2.0 * M_PI);
   MotionPrimitive p;
   p.start_heading = h;
   p.end_heading = h1;
@@ -149,8 +153,8 @@ MotionPrimitive turnOnTheSpot(const PrimitiveSet& set, int h, int side, double m
   return p;
 }
 
-MotionPrimitive transformed(const MotionPrimitive& bp, const Symmetry& g, int start, const std::vector<Vec>& dirs,
-                            const PrimitiveSet& set) {
+MotionPrimitive transformed(const MotionPrimitive& bp, const Symmetry& g, int start,
+                            const std::vector<Vec>& dirs, const PrimitiveSet& set) {
   MotionPrimitive p = bp;
   p.start_heading = start;
   const Vec e = g.apply(Vec{bp.end_dx, bp.end_dy});
@@ -168,9 +172,12 @@ MotionPrimitive transformed(const MotionPrimitive& bp, const Symmetry& g, int st
 
 void numberByHeading(PrimitiveSet& set) {
   std::stable_sort(set.primitives.begin(), set.primitives.end(),
-                   [](const MotionPrimitive& a, const MotionPrimitive& b) { return a.start_heading < b.start_heading; });
+                   [](const MotionPrimitive& a, const MotionPrimitive& b) {
+                     return a.start_heading < b.start_heading;
+                   });
   for (std::size_t i = 0; i < set.primitives.size(); ++i) {
-    const bool first = i == 0 || set.primitives[i - 1].start_heading != set.primitives[i].start_heading;
+    const bool first =
+        i == 0 || set.primitives[i - 1].start_heading != set.primitives[i].start_heading;
     set.primitives[i].id = first ? 0 : set.primitives[i - 1].id + 1;
   }
 }
@@ -211,9 +218,9 @@ void dropCopies(PrimitiveSet& set) {
       bool copy = false;
       for (std::size_t j : same_hash) {
         const MotionPrimitive& q = kept[j];
-        copy = copy || (q.end_dx == p.end_dx && q.end_dy == p.end_dy && q.end_heading == p.end_heading &&
-                        q.cost_multiplier == p.cost_multiplier && q.turning_radius == p.turning_radius &&
-                        samePoses(q.poses, p.poses));
+        copy = copy || (q.end_dx == p.end_dx && q.end_dy == p.end_dy &&
+                        q.end_heading == p.end_heading && q.cost_multiplier == p.cost_multiplier &&
+                        q.turning_radius == p.turning_radius && samePoses(q.poses, p.poses));
       }
       if (copy) continue;
       same_hash.push_back(kept.size());

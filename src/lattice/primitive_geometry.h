@@ -60,8 +60,8 @@ MotionPrimitive turnOnTheSpot(const PrimitiveSet& set, int h, int side, double m
 /// `p`, a primitive of a base heading, under symmetry g, starting at heading `start` (g's image
 /// of p's start): end cell and heading mapped, poses mapped with the ends snapped exactly to the
 /// lattice states, angles in [0, 2 pi); a reflection changes the sign of the turning radius.
-MotionPrimitive transformed(const MotionPrimitive& p, const Symmetry& g, int start, const std::vector<Vec>& dirs,
-                            const PrimitiveSet& set);
+MotionPrimitive transformed(const MotionPrimitive& p, const Symmetry& g, int start,
+                            const std::vector<Vec>& dirs, const PrimitiveSet& set);
 
 /// Groups set.primitives by start heading (stable) and numbers them 0, 1, ... per heading.
 void numberByHeading(PrimitiveSet& set);

@@ -43,7 +43,10 @@ std::pair<std::size_t, std::size_t> PrimitiveSet::range(int heading) const {
   std::size_t lo = 0, hi = primitives.size();
   while (lo < hi) {
     const std::size_t mid = (lo + hi) / 2;
-    if (primitives[mid].start_heading < heading) lo = mid + 1; else hi = mid;
+    if (primitives[mid].start_heading < heading)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   std::size_t end = lo;
   while (end < primitives.size() && primitives[end].start_heading == heading) ++end;

@@ -9,7 +9,8 @@ namespace amha {
 namespace lattice {
 
 PrimitiveSet generatePrimitives(const PrimitiveGeneratorOptions& o) {
-  return o.generator == PrimitiveGenerator::kLegacy ? generateLegacyPrimitives(o) : generateNearMinimalPrimitives(o);
+  return o.generator == PrimitiveGenerator::kLegacy ? generateLegacyPrimitives(o)
+                                                    : generateNearMinimalPrimitives(o);
 }
 
 PrimitiveGeneratorOptions generatorOptionsFor(const LatticeConfig& c, double resolution) {
@@ -42,7 +43,8 @@ bool isNav2LatticePath(const std::string& path) {
 }
 
 PrimitiveSet readPrimitiveFile(const std::string& path, double map_resolution) {
-  return isNav2LatticePath(path) ? readNav2LatticeFile(path, map_resolution) : readMprimFile(path, map_resolution);
+  return isNav2LatticePath(path) ? readNav2LatticeFile(path, map_resolution)
+                                 : readMprimFile(path, map_resolution);
 }
 
 void writePrimitiveFile(const std::string& path, const PrimitiveSet& set) {
@@ -68,9 +70,12 @@ bool parseMotionModel(const std::string& text, MotionModel* model) {
 
 const char* motionModelName(MotionModel model) {
   switch (model) {
-    case MotionModel::kDifferential: return "diff";
-    case MotionModel::kAckermann: return "ackermann";
-    case MotionModel::kOmni: return "omni";
+    case MotionModel::kDifferential:
+      return "diff";
+    case MotionModel::kAckermann:
+      return "ackermann";
+    case MotionModel::kOmni:
+      return "omni";
   }
   return "?";
 }
@@ -81,8 +86,9 @@ void addBackwardTwins(PrimitiveSet& set, double multiplier) {
   for (int h = 0; h < n; ++h) {
     opposite[h] = set.headingIndex(set.heading_angles[h] + M_PI);
     if (angleDistance(set.heading_angles[opposite[h]], set.heading_angles[h] + M_PI) > 1e-6) {
-      throw LatticeError(LatticeError::Kind::kPrimitives,
-                         "backward motions: heading " + std::to_string(h) + " has no opposite heading");
+      throw LatticeError(
+          LatticeError::Kind::kPrimitives,
+          "backward motions: heading " + std::to_string(h) + " has no opposite heading");
     }
   }
   std::vector<MotionPrimitive> twins;
@@ -92,7 +98,8 @@ void addBackwardTwins(PrimitiveSet& set, double multiplier) {
     const double phi = set.heading_angles[p.start_heading];
     const Pose2D& a = p.poses.front();
     const Pose2D* b = &p.poses[1];
-    for (std::size_t k = 2; k < p.poses.size() && std::hypot(b->x - a.x, b->y - a.y) < 1e-9; ++k) b = &p.poses[k];
+    for (std::size_t k = 2; k < p.poses.size() && std::hypot(b->x - a.x, b->y - a.y) < 1e-9; ++k)
+      b = &p.poses[k];
     const double dx = b->x - a.x, dy = b->y - a.y, along = dx * std::cos(phi) + dy * std::sin(phi);
     if (!(along > 0.5 * std::hypot(dx, dy))) continue;
     MotionPrimitive t = p;

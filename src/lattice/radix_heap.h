@@ -51,7 +51,6 @@ class RadixHeap {
   std::size_t size_ = 0;
 };
 
-
 }  // namespace detail
 }  // namespace lattice
 }  // namespace amha

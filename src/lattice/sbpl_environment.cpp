@@ -21,7 +21,8 @@ SbplEnvironment loadSbplEnvironment(const std::string& file) {
   const long h = t.integer("the height in cells");
   if (w <= 0 || h <= 0 || w > 1000000 || h > 1000000 ||
       static_cast<std::size_t>(w) * static_cast<std::size_t>(h) > (std::size_t{1} << 26)) {
-    t.fail("map size " + std::to_string(w) + " x " + std::to_string(h) + " is not positive or exceeds 2^26 cells");
+    t.fail("map size " + std::to_string(w) + " x " + std::to_string(h) +
+           " is not positive or exceeds 2^26 cells");
   }
   std::string label = t.next();
   if (label == "NumThetaDirs:") {
@@ -33,7 +34,8 @@ SbplEnvironment loadSbplEnvironment(const std::string& file) {
   if (label != "obsthresh:") t.fail("expected 'obsthresh:' but found '" + label + "'");
   auto threshold = [&](const char* what) {
     const long v = t.integer(what);
-    if (v < -1 || v > 255) t.fail(std::string(what) + " " + std::to_string(v) + " is not in -1..255");
+    if (v < -1 || v > 255)
+      t.fail(std::string(what) + " " + std::to_string(v) + " is not in -1..255");
     return static_cast<int>(v);
   };
   env.obsthresh = threshold("obsthresh");
@@ -75,7 +77,8 @@ SbplEnvironment loadSbplEnvironment(const std::string& file) {
       char* end = nullptr;
       const long c = std::strtol(tok.c_str(), &end, 10);
       if (end == tok.c_str() || *end != '\0' || c < 0 || c > 255) {
-        t.fail("cell (" + std::to_string(x) + ", " + std::to_string(y) + "): cost '" + tok + "' is not an integer in 0..255");
+        t.fail("cell (" + std::to_string(x) + ", " + std::to_string(y) + "): cost '" + tok +
+               "' is not an integer in 0..255");
       }
       std::uint8_t cost;
       if (c >= env.obsthresh) {
@@ -89,7 +92,9 @@ SbplEnvironment loadSbplEnvironment(const std::string& file) {
     }
   }
   const std::string extra = t.next();
-  if (!extra.empty()) t.fail("unexpected '" + extra + "' after the " + std::to_string(w) + " x " + std::to_string(h) + " costs");
+  if (!extra.empty())
+    t.fail("unexpected '" + extra + "' after the " + std::to_string(w) + " x " + std::to_string(h) +
+           " costs");
   return env;
 }
 

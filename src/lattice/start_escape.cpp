@@ -11,14 +11,15 @@
 namespace amha {
 namespace lattice {
 
-StartEscape::StartEscape(const LatticeGraph& graph, const LatticeState& start, double tolerance, double penalty,
-                         const StopCondition* stop)
+StartEscape::StartEscape(const LatticeGraph& graph, const LatticeState& start, double tolerance,
+                         double penalty, const StopCondition* stop)
     : graph_(graph), penalty_(penalty) {
   const GridMap& map = graph.map();
   // The obstacle cells the robot stands on: under its footprint (its centre cell included).
   std::vector<CellOffset> under{CellOffset{0, 0}};
   if (!graph.footprint().polygon.empty()) {
-    under = footprintCells(graph.footprint(), Pose2D{0.0, 0.0, graph.primitives().heading_angles[start.heading]},
+    under = footprintCells(graph.footprint(),
+                           Pose2D{0.0, 0.0, graph.primitives().heading_angles[start.heading]},
                            map.resolution);
   }
   for (const CellOffset& c : under) {
@@ -63,7 +64,8 @@ StartEscape::StartEscape(const LatticeGraph& graph, const LatticeState& start, d
       continue;
     }
     ++expanded_;
-    for (const LatticeAction* a = graph.actionsBegin(s.heading); a != graph.actionsEnd(s.heading); ++a) {
+    for (const LatticeAction* a = graph.actionsBegin(s.heading); a != graph.actionsEnd(s.heading);
+         ++a) {
       const LatticeState t{s.x + a->dx, s.y + a->dy, a->end_heading};
       if (std::hypot(t.x - start.x, t.y - start.y) > reach) continue;
       const Cost c = motionCost(s.x, s.y, *a);
@@ -78,12 +80,14 @@ bool StartEscape::allowed(std::int64_t cell) const {
 }
 
 std::uint64_t StartEscape::key(const LatticeState& s) const {
-  return (static_cast<std::uint64_t>(s.y) * graph_.width() + s.x) << 16 | static_cast<std::uint64_t>(s.heading);
+  return (static_cast<std::uint64_t>(s.y) * graph_.width() + s.x) << 16 |
+         static_cast<std::uint64_t>(s.heading);
 }
 
 Cost StartEscape::motionCost(int x, int y, const LatticeAction& a) const {
   const GridMap& map = graph_.map();
-  if (x + a.min_dx < 0 || x + a.max_dx >= map.width || y + a.min_dy < 0 || y + a.max_dy >= map.height) {
+  if (x + a.min_dx < 0 || x + a.max_dx >= map.width || y + a.min_dy < 0 ||
+      y + a.max_dy >= map.height) {
     return kInvalidEdge;
   }
   const std::int64_t base = static_cast<std::int64_t>(y) * map.width + x;

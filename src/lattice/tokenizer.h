@@ -56,7 +56,8 @@ class Tokenizer {
   void expect(const std::string& label) {
     const std::string t = next();
     if (t != label) {
-      fail("expected '" + label + "' but found " + (t.empty() ? "the end of the file" : "'" + t + "'"));
+      fail("expected '" + label + "' but found " +
+           (t.empty() ? "the end of the file" : "'" + t + "'"));
     }
   }
 

@@ -11,7 +11,7 @@
 #include <tf2/utils.h>
 
 #include "amha_planner/lattice/map_loaders.h"  // occupancyToCost
-#include "amha_planner/ros/planner_params.h"  // normaliseFrame
+#include "amha_planner/ros/planner_params.h"   // normaliseFrame
 
 namespace amha_planner {
 
@@ -40,17 +40,17 @@ lat::GridMap gridMapFromOccupancy(const nav_msgs::OccupancyGrid& msg,
     s << "map size " << msg.info.width << " x " << msg.info.height << " is too large";
     throw lat::LatticeError(lat::LatticeError::Kind::kMap, s.str());
   }
-  return lat::gridMapFromOccupancy(static_cast<int>(msg.info.width),
-                                   static_cast<int>(msg.info.height), msg.info.resolution,
-                                   o.position.x, o.position.y, yaw, msg.data.data(),
-                                   msg.data.size(), conversion, max_cells);
+  return lat::gridMapFromOccupancy(
+      static_cast<int>(msg.info.width), static_cast<int>(msg.info.height), msg.info.resolution,
+      o.position.x, o.position.y, yaw, msg.data.data(), msg.data.size(), conversion, max_cells);
 }
 
 void convertOccupancyCells(const nav_msgs::OccupancyGrid& msg, const lat::CellRect& rect,
                            const lat::OccupancyConversion& conversion, lat::GridMap* grid) {
   const std::uint64_t w = msg.info.width, h = msg.info.height;
-  if (static_cast<std::uint64_t>(grid->width) != w || static_cast<std::uint64_t>(grid->height) != h ||
-      msg.data.size() != w * h || grid->cost.size() != w * h) {
+  if (static_cast<std::uint64_t>(grid->width) != w ||
+      static_cast<std::uint64_t>(grid->height) != h || msg.data.size() != w * h ||
+      grid->cost.size() != w * h) {
     throw lat::LatticeError(lat::LatticeError::Kind::kMap,
                             "map cells: the grid and the message differ in size");
   }
@@ -180,8 +180,9 @@ PlanSolution planSolutionMsg(const lat::LatticeSolution& solution, std::uint32_t
   return m;
 }
 
-PlanSolution smoothedSolutionMsg(const lat::LatticeSolution& published, const lat::LatticeSolution& lattice,
-                                 std::uint32_t request_id, const std::string& frame, const ros::Time& stamp) {
+PlanSolution smoothedSolutionMsg(const lat::LatticeSolution& published,
+                                 const lat::LatticeSolution& lattice, std::uint32_t request_id,
+                                 const std::string& frame, const ros::Time& stamp) {
   PlanSolution m = planSolutionMsg(published, request_id, frame, stamp);
   m.smoothed = true;
   m.lattice_path = pathFromPoses(lattice.poses, frame, stamp);
@@ -210,8 +211,10 @@ void addOutline(const std::vector<std::array<double, 2>>& polygon,
     const auto& a = polygon[i];
     const auto& b = polygon[(i + 1) % polygon.size()];
     geometry_msgs::Point pa, pb;
-    pa.x = a[0]; pa.y = a[1];
-    pb.x = b[0]; pb.y = b[1];
+    pa.x = a[0];
+    pa.y = a[1];
+    pb.x = b[0];
+    pb.y = b[1];
     lines->points.push_back(pa);
     lines->points.push_back(pb);
   }
@@ -219,7 +222,10 @@ void addOutline(const std::vector<std::array<double, 2>>& polygon,
 
 std_msgs::ColorRGBA color(float r, float g, float b, float a) {
   std_msgs::ColorRGBA c;
-  c.r = r; c.g = g; c.b = b; c.a = a;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
   return c;
 }
 
@@ -231,7 +237,9 @@ visualization_msgs::Marker poseArrow(const std::string& ns, const lat::Pose2D& p
   m.pose.position.y = p.y;
   m.pose.position.z = 0.05;
   m.pose.orientation = quaternionFromYaw(p.theta);
-  m.scale.x = 1.0; m.scale.y = 0.2; m.scale.z = 0.2;
+  m.scale.x = 1.0;
+  m.scale.y = 0.2;
+  m.scale.z = 0.2;
   m.color = c;
   return m;
 }
@@ -240,8 +248,7 @@ visualization_msgs::Marker poseArrow(const std::string& ns, const lat::Pose2D& p
 
 visualization_msgs::MarkerArray footprintMarkers(const lat::LatticePlanner& planner,
                                                  const std::vector<lat::Pose2D>& poses,
-                                                 const lat::Pose2D& start,
-                                                 const lat::Pose2D& goal,
+                                                 const lat::Pose2D& start, const lat::Pose2D& goal,
                                                  const std::string& frame, const ros::Time& stamp,
                                                  double spacing) {
   visualization_msgs::MarkerArray out;
@@ -266,8 +273,8 @@ visualization_msgs::MarkerArray footprintMarkers(const lat::LatticePlanner& plan
   const auto red = color(0.9f, 0.0f, 0.0f, 1.0f);
   out.markers.push_back(poseArrow("start", start, green, frame, stamp));
   out.markers.push_back(poseArrow("goal", goal, red, frame, stamp));
-  auto start_fp = baseMarker("start_footprint", 0, visualization_msgs::Marker::LINE_LIST, frame,
-                             stamp);
+  auto start_fp =
+      baseMarker("start_footprint", 0, visualization_msgs::Marker::LINE_LIST, frame, stamp);
   start_fp.scale.x = 0.06;
   start_fp.color = green;
   addOutline(planner.footprintAt(start), &start_fp);

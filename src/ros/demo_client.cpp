@@ -15,9 +15,9 @@
 
 #include <actionlib/client/simple_action_client.h>
 #include <nav_msgs/OccupancyGrid.h>
-#include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <opencv2/imgproc.hpp>
 
 #include "amha_planner/PlanAnytimeAction.h"
 #include "amha_planner/lattice/image_file.h"
@@ -27,8 +27,8 @@ namespace {
 
 using Client = actionlib::SimpleActionClient<amha_planner::PlanAnytimeAction>;
 
-bool readPose(const ros::NodeHandle& pnh, const std::string& name,
-              geometry_msgs::PoseStamped* out, const std::string& frame) {
+bool readPose(const ros::NodeHandle& pnh, const std::string& name, geometry_msgs::PoseStamped* out,
+              const std::string& frame) {
   std::vector<double> v;
   if (!pnh.getParam(name, v) || v.size() != 3) {
     ROS_FATAL("demo_client: set ~%s to [x, y, yaw]", name.c_str());
@@ -66,8 +66,9 @@ void drawPicture(const nav_msgs::OccupancyGrid& map,
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const int v = map.data[static_cast<std::size_t>(y) * w + x];
-      const cv::Vec3b c = v < 0 ? cv::Vec3b(205, 205, 205)
-                                : v >= 65 ? cv::Vec3b(0, 0, 0) : cv::Vec3b(255, 255, 255);
+      const cv::Vec3b c = v < 0     ? cv::Vec3b(205, 205, 205)
+                          : v >= 65 ? cv::Vec3b(0, 0, 0)
+                                    : cv::Vec3b(255, 255, 255);
       cells.at<cv::Vec3b>(h - 1 - y, x) = c;
     }
   }
@@ -184,8 +185,8 @@ int main(int argc, char** argv) {
               robot_tf ? "the robot's pose on tf, " : "", start.pose.position.x,
               start.pose.position.y, goal.goal.pose.position.x, goal.goal.pose.position.y,
               frame.c_str(), time_budget);
-  std::printf("demo: %4s %10s %12s %9s %10s %7s %7s %12s\n", "#", "elapsed s", "cost m",
-              "bound", "certified", "w1", "w2", "expansions");
+  std::printf("demo: %4s %10s %12s %9s %10s %7s %7s %12s\n", "#", "elapsed s", "cost m", "bound",
+              "certified", "w1", "w2", "expansions");
   std::fflush(stdout);
   int improvements = 0;
   for (int attempt = 0;; ++attempt) {
@@ -215,10 +216,11 @@ int main(int argc, char** argv) {
   const bool ok = result->status == amha_planner::PlanAnytimeResult::SUCCESS;
   std::printf("demo: result: %s (status %u): %s\n", ok ? "SUCCESS" : "FAILED", result->status,
               result->message.c_str());
-  std::printf("demo: %d improvement(s) streamed; final cost %.3f m, bound %.3f, certified %.3f, "
-              "%.3f s, %llu expansions\n",
-              improvements, result->cost, result->bound, result->certified_bound,
-              result->planning_time, static_cast<unsigned long long>(result->expansions));
+  std::printf(
+      "demo: %d improvement(s) streamed; final cost %.3f m, bound %.3f, certified %.3f, "
+      "%.3f s, %llu expansions\n",
+      improvements, result->cost, result->bound, result->certified_bound, result->planning_time,
+      static_cast<unsigned long long>(result->expansions));
   if (!output_image.empty()) {
     std::string name = algorithm;
     if (name.empty() && !ros::param::get("/amha_planner/algorithm", name)) name = "amha";

@@ -14,8 +14,9 @@ namespace amha_planner {
 
 namespace lat = amha::lattice;
 
-MapTracker::MapTracker(const ros::NodeHandle& nh, const PlannerParams& startup, ParamsInForce& params,
-                       TransformToGlobal to_global, std::function<void()> after_build)
+MapTracker::MapTracker(const ros::NodeHandle& nh, const PlannerParams& startup,
+                       ParamsInForce& params, TransformToGlobal to_global,
+                       std::function<void()> after_build)
     : global_frame_(startup.global_frame),
       max_map_cells_(startup.max_map_cells),
       params_(params),
@@ -27,8 +28,8 @@ MapTracker::MapTracker(const ros::NodeHandle& nh, const PlannerParams& startup, 
   map_sub_ = map_nh.subscribe("map", 1, &MapTracker::onMap, this);
   // Partial updates on "<map topic>_updates", as costmap_2d publishes them and rviz reads them.
   // Each one changes the map, so the queue is long: a dropped update would leave it wrong.
-  map_updates_sub_ = map_nh.subscribe(map_sub_.getTopic() + "_updates", 100,
-                                      &MapTracker::onMapUpdate, this);
+  map_updates_sub_ =
+      map_nh.subscribe(map_sub_.getTopic() + "_updates", 100, &MapTracker::onMapUpdate, this);
   map_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &map_queue_);
 }
 
@@ -110,9 +111,11 @@ void MapTracker::onMap(const nav_msgs::OccupancyGrid::ConstPtr& msg) {
   }
   const std::string frame = normaliseFrame(msg->header.frame_id);
   if (!frame.empty() && frame != global_frame_) {
-    ROS_INFO("amha_planner: the map is in frame '%s': its origin, transformed into '%s', is (%.3f, %.3f)",
-             msg->header.frame_id.c_str(), global_frame_.c_str(), placed.info.origin.position.x,
-             placed.info.origin.position.y);
+    ROS_INFO(
+        "amha_planner: the map is in frame '%s': its origin, transformed into '%s', is (%.3f, "
+        "%.3f)",
+        msg->header.frame_id.c_str(), global_frame_.c_str(), placed.info.origin.position.x,
+        placed.info.origin.position.y);
   }
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
@@ -136,8 +139,10 @@ void MapTracker::onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& upda
   {
     std::lock_guard<std::mutex> lock(map_mutex_);
     if (last_map_.data.empty()) {
-      ROS_WARN_THROTTLE(5.0, "amha_planner: a map update on %s came before any valid map on %s: "
-                        "ignored", map_updates_sub_.getTopic().c_str(), map_sub_.getTopic().c_str());
+      ROS_WARN_THROTTLE(5.0,
+                        "amha_planner: a map update on %s came before any valid map on %s: "
+                        "ignored",
+                        map_updates_sub_.getTopic().c_str(), map_sub_.getTopic().c_str());
       return;
     }
     // Checked before any cell is written: a refused update leaves the map as it was.
@@ -168,9 +173,11 @@ void MapTracker::rebuildPlanner() {
       // before the work (LatticeError, SetupStopped); shutdown stops a build under way.
       amha::SearchLimits limits;
       limits.cancel = &stop_builds_;
-      limits.max_memory_bytes = static_cast<std::size_t>(in.params->max_memory_mb * 1024.0 * 1024.0);
-      planner = in.previous ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
-                            : std::make_shared<lat::LatticePlanner>(in.grid, in.params->lattice, limits);
+      limits.max_memory_bytes =
+          static_cast<std::size_t>(in.params->max_memory_mb * 1024.0 * 1024.0);
+      planner = in.previous
+                    ? std::make_shared<lat::LatticePlanner>(*in.previous, in.grid, in.changed)
+                    : std::make_shared<lat::LatticePlanner>(in.grid, in.params->lattice, limits);
     } catch (const std::exception& e) {
       in.error = e.what();
     }
@@ -178,9 +185,10 @@ void MapTracker::rebuildPlanner() {
   const bool incremental = in.previous != nullptr;
   in.previous = nullptr;  // see installPlanner
   const std::shared_ptr<lat::LatticePlanner> built = planner;
-  const bool have_planner = installPlanner(std::move(planner), in.version, in.full_map ? in.error : "");
-  logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), have_planner,
-           incremental);
+  const bool have_planner =
+      installPlanner(std::move(planner), in.version, in.full_map ? in.error : "");
+  logBuild(in, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+           have_planner, incremental);
   // The replaced planner's arrays (megabytes per million cells) would otherwise stay resident.
   after_build_();
   if (built) prepareKinematicTables(*built);
@@ -198,7 +206,8 @@ void MapTracker::prepareKinematicTables(const lat::LatticePlanner& planner) {
   const std::size_t after = planner.kinematicTableBytes();
   if (after != before || !complete) {
     ROS_INFO("amha_planner: kinematic tables %s in %.2f s, %.1f MB", complete ? "built" : "stopped",
-             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), after / 1e6);
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+             after / 1e6);
   }
 }
 
@@ -225,7 +234,9 @@ MapTracker::BuildInput MapTracker::takeUnbuiltMap() {
   in.resolution = last_map_.info.resolution;
   // `changed` is relative to the full map's grid, or else to the previous planner's map;
   // only its cells are converted again.
-  const lat::GridMap* base = in.full_map ? full_grid.get() : in.previous ? &in.previous->map() : nullptr;
+  const lat::GridMap* base = in.full_map   ? full_grid.get()
+                             : in.previous ? &in.previous->map()
+                                           : nullptr;
   try {
     if (in.reconfigured) {  // every cell again, with the new conversion
       in.grid = std::make_shared<const lat::GridMap>(
@@ -276,7 +287,8 @@ std::string MapTracker::refusedMapReason() const {
   return refused_map_reason_;
 }
 
-void MapTracker::logBuild(const BuildInput& in, double seconds, bool have_planner, bool incremental) const {
+void MapTracker::logBuild(const BuildInput& in, double seconds, bool have_planner,
+                          bool incremental) const {
   // A reconfiguration of the robot or the map conversion rebuilds the current map in full.
   std::string what = in.full_map ? "map" : in.reconfigured ? "map (new parameters)" : "";
   if (in.updates > 0) {
@@ -296,8 +308,10 @@ void MapTracker::logBuild(const BuildInput& in, double seconds, bool have_planne
   }
   // Updates can come several times a second (costmap_2d): one line each only when debugging.
   ROS_LOG(in.full_map || in.reconfigured ? ros::console::levels::Info : ros::console::levels::Debug,
-          ROSCONSOLE_DEFAULT_NAME, "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
-          "ready in %.2f s%s", what.c_str(), in.width, in.height, in.resolution, seconds,
+          ROSCONSOLE_DEFAULT_NAME,
+          "amha_planner: %s %ux%u at %.3f m/cell accepted; lattice "
+          "ready in %.2f s%s",
+          what.c_str(), in.width, in.height, in.resolution, seconds,
           incremental ? " (rebuilt near the change only)" : "");
 }
 

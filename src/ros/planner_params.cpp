@@ -4,8 +4,8 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 #include <XmlRpcValue.h>
 
@@ -28,8 +28,8 @@ double toDouble(const XmlRpc::XmlRpcValue& v, bool* ok) {
   return 0.0;
 }
 
-double getDouble(const ros::NodeHandle& pnh, const std::string& name, double fallback,
-                 double min, double max) {
+double getDouble(const ros::NodeHandle& pnh, const std::string& name, double fallback, double min,
+                 double max) {
   XmlRpc::XmlRpcValue v;
   if (!pnh.getParam(name, v)) return fallback;
   bool ok = false;
@@ -74,7 +74,7 @@ std::string getString(const ros::NodeHandle& pnh, const std::string& name,
 // A footprint is a list of [x, y] points, as in costmap_2d: either a YAML list or the string
 // form "[[x, y], [x, y], ...]" that costmap_2d also accepts.
 std::vector<std::array<double, 2>> parseFootprintString(const ros::NodeHandle& pnh,
-                                                         const std::string& text) {
+                                                        const std::string& text) {
   std::vector<std::array<double, 2>> out;
   std::vector<double> numbers;
   std::string cleaned;
@@ -100,7 +100,8 @@ std::vector<std::array<double, 2>> parseFootprintString(const ros::NodeHandle& p
   while (in >> d) numbers.push_back(d);
   if (!in.eof()) bad(pnh, "footprint", "not a list of [x, y] points: " + text);
   if (numbers.size() % 2 != 0) bad(pnh, "footprint", "odd number of coordinates: " + text);
-  for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) out.push_back({numbers[i], numbers[i + 1]});
+  for (std::size_t i = 0; i + 1 < numbers.size(); i += 2)
+    out.push_back({numbers[i], numbers[i + 1]});
   return out;
 }
 
@@ -134,7 +135,8 @@ bool validWeight(double w) { return w >= 1.0 && w <= amha::kMaxWeight; }  // NaN
 
 }  // namespace
 
-std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh, const std::string& text) {
+std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh,
+                                                       const std::string& text) {
   std::vector<std::array<double, 2>> out = parseFootprintString(pnh, text);
   if (!out.empty() && out.size() < 3) bad(pnh, "footprint", "needs at least 3 points");
   return out;
@@ -155,12 +157,14 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   l.robot.radius = getDouble(pnh, "robot_radius", l.robot.radius, 1e-3, kMaxRobotRadius);
   // Motion primitives: a file, or generated.
   l.motion.mprim_file = getString(pnh, "mprim_file", "");
-  l.motion.turning_radius = getDouble(pnh, "turning_radius", l.motion.turning_radius, 1e-3, kMaxTurningRadius);
+  l.motion.turning_radius =
+      getDouble(pnh, "turning_radius", l.motion.turning_radius, 1e-3, kMaxTurningRadius);
   l.motion.num_headings = getInt(pnh, "num_headings", l.motion.num_headings, 8, 1024);
   if (l.motion.num_headings % 8 != 0) bad(pnh, "num_headings", "must be a multiple of 8");
   l.motion.allow_reverse = getBool(pnh, "allow_reverse", l.motion.allow_reverse);
   l.motion.turn_in_place = getBool(pnh, "turn_in_place", l.motion.turn_in_place);
-  const std::string model = getString(pnh, "motion_model", amha::lattice::motionModelName(l.motion.model));
+  const std::string model =
+      getString(pnh, "motion_model", amha::lattice::motionModelName(l.motion.model));
   if (!amha::lattice::parseMotionModel(model, &l.motion.model)) {
     bad(pnh, "motion_model", "'" + model + "' is not diff, ackermann or omni");
   }
@@ -169,26 +173,34 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
     bad(pnh, "primitive_generator", "'" + generator + "' is not near-minimal or legacy");
   }
   l.motion.generator = generator == "legacy" ? amha::lattice::PrimitiveGenerator::kLegacy
-                                                : amha::lattice::PrimitiveGenerator::kNearMinimal;
-  l.cost.reverse_multiplier = getDouble(pnh, "reverse_penalty", l.cost.reverse_multiplier, 1e-3, 1e6);
+                                             : amha::lattice::PrimitiveGenerator::kNearMinimal;
+  l.cost.reverse_multiplier =
+      getDouble(pnh, "reverse_penalty", l.cost.reverse_multiplier, 1e-3, 1e6);
   l.cost.penalty = getDouble(pnh, "cost_penalty", l.cost.penalty, 0.0, 1e6);
-  l.heuristics.num_inadmissible = getInt(pnh, "num_inadmissible", l.heuristics.num_inadmissible, 0, 3);
+  l.heuristics.num_inadmissible =
+      getInt(pnh, "num_inadmissible", l.heuristics.num_inadmissible, 0, 3);
   l.cost.nominal_speed = getDouble(pnh, "nominal_speed", l.cost.nominal_speed, 1e-3, 100.0);
   l.cost.time_to_turn_45 = getDouble(pnh, "time_to_turn_45", l.cost.time_to_turn_45, 0.0, 1000.0);
   l.heuristics.grid_anchor = getBool(pnh, "grid_anchor", l.heuristics.grid_anchor);
   l.heuristics.coarse_anchor = getBool(pnh, "coarse_anchor", l.heuristics.coarse_anchor);
-  l.heuristics.coarse_block = getInt(pnh, "coarse_block", l.heuristics.coarse_block, 0, amha::lattice::kMaxCoarseBlock);
-  l.heuristics.kinematic_radius = getDouble(pnh, "kinematic_radius", l.heuristics.kinematic_radius, 0.0, 100.0);
-  l.heuristics.anchor_connectivity = getInt(pnh, "anchor_connectivity", l.heuristics.anchor_connectivity, 8, 16);
-  if (l.heuristics.anchor_connectivity != 8 && l.heuristics.anchor_connectivity != 16) bad(pnh, "anchor_connectivity", "must be 8 or 16");
+  l.heuristics.coarse_block =
+      getInt(pnh, "coarse_block", l.heuristics.coarse_block, 0, amha::lattice::kMaxCoarseBlock);
+  l.heuristics.kinematic_radius =
+      getDouble(pnh, "kinematic_radius", l.heuristics.kinematic_radius, 0.0, 100.0);
+  l.heuristics.anchor_connectivity =
+      getInt(pnh, "anchor_connectivity", l.heuristics.anchor_connectivity, 8, 16);
+  if (l.heuristics.anchor_connectivity != 8 && l.heuristics.anchor_connectivity != 16)
+    bad(pnh, "anchor_connectivity", "must be 8 or 16");
   const std::string inadmissible = getString(pnh, "inadmissible_heuristics", "kinematic");
   if (inadmissible != "kinematic" && inadmissible != "paper") {
     bad(pnh, "inadmissible_heuristics", "must be kinematic or paper, not '" + inadmissible + "'");
   }
-  l.heuristics.inadmissible = inadmissible == "paper" ? amha::lattice::LatticeConfig::Inadmissible::kPaper
-                                           : amha::lattice::LatticeConfig::Inadmissible::kKinematic;
+  l.heuristics.inadmissible = inadmissible == "paper"
+                                  ? amha::lattice::LatticeConfig::Inadmissible::kPaper
+                                  : amha::lattice::LatticeConfig::Inadmissible::kKinematic;
   l.heuristics.anchor_turn_term = getBool(pnh, "anchor_turn_term", l.heuristics.anchor_turn_term);
-  l.heuristics.inflate_heading_terms = getBool(pnh, "inflate_heading_terms", l.heuristics.inflate_heading_terms);
+  l.heuristics.inflate_heading_terms =
+      getBool(pnh, "inflate_heading_terms", l.heuristics.inflate_heading_terms);
   l.backward_search = getBool(pnh, "backward_search", l.backward_search);
   l.cache.size = getInt(pnh, "heuristic_cache_size", l.cache.size, 1, 64);
   l.cache.repair = getBool(pnh, "repair_heuristics", l.cache.repair);
@@ -208,19 +220,22 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
   p.dw1 = getDouble(pnh, "dw1", -1, 0.0, amha::kMaxWeight);
   p.dw2 = getDouble(pnh, "dw2", -1, 0.0, amha::kMaxWeight);
   p.eps = getDouble(pnh, "eps", -1, 1.0, amha::kMaxWeight);
-  const std::string schedule = getString(pnh, "queue_schedule", amha::scheduleName(p.queue_schedule));
+  const std::string schedule =
+      getString(pnh, "queue_schedule", amha::scheduleName(p.queue_schedule));
   if (!amha::parseSchedule(schedule, &p.queue_schedule)) {
     bad(pnh, "queue_schedule", "unknown schedule '" + schedule + "' (rr, dts)");
   }
   p.eps_decrement = getDouble(pnh, "eps_decrement", -1, 0.0, amha::kMaxWeight);
-  const std::string weights = getString(pnh, "weight_schedule", amha::weightScheduleName(p.weight_schedule));
+  const std::string weights =
+      getString(pnh, "weight_schedule", amha::weightScheduleName(p.weight_schedule));
   if (!amha::parseWeightSchedule(weights, &p.weight_schedule)) {
     bad(pnh, "weight_schedule", "unknown schedule '" + weights + "' (certified, decrement)");
   }
   p.certified_ratio = getDouble(pnh, "certified_ratio", p.certified_ratio, 0.0, 0.999);
   p.certified_split = getDouble(pnh, "certified_split", p.certified_split, 0.0, 1.0);
   p.final_gap = getDouble(pnh, "final_gap", p.final_gap, 0.0, 1e3);
-  p.publish_within_iterations = getBool(pnh, "publish_within_iterations", p.publish_within_iterations);
+  p.publish_within_iterations =
+      getBool(pnh, "publish_within_iterations", p.publish_within_iterations);
   p.stall_expansions = getInt(pnh, "stall_expansions", p.stall_expansions, 0, 1 << 30);
   p.stall_w1 = getDouble(pnh, "stall_w1", p.stall_w1, 1.0, amha::kMaxWeight);
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
@@ -255,7 +270,8 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
   for (const auto& [name, w] : {std::pair<const char*, double>{"w1", w1}, {"w2", w2}}) {
     if (w != 0.0 && !validWeight(w)) {
       std::ostringstream s;
-      s << name << " " << w << " is outside [1, " << amha::kMaxWeight << "] (0 keeps the configured value)";
+      s << name << " " << w << " is outside [1, " << amha::kMaxWeight
+        << "] (0 keeps the configured value)";
       *error = s.str();
       return false;
     }
@@ -273,7 +289,8 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
   // ~eps and ~eps_decrement are ARA*'s and weighted A*'s w1 and dw1; a negative parameter is
   // unset, and the request's w1, w2 (0: unset) come last.
   auto given = [](double v) { return v >= 0 ? std::optional<double>(v) : std::nullopt; };
-  const bool eps = algorithm == amha::Algorithm::kAraStar || algorithm == amha::Algorithm::kWeightedAStar;
+  const bool eps =
+      algorithm == amha::Algorithm::kAraStar || algorithm == amha::Algorithm::kWeightedAStar;
   amha::WeightChoice weights{given(eps ? params.eps : params.w1), given(params.w2),
                              given(eps ? params.eps_decrement : params.dw1), given(params.dw2)};
   if (w1 != 0.0) weights.w1 = w1;

@@ -32,7 +32,8 @@ constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     : nh_(nh), pnh_(pnh), startup_(loadPlannerParams(pnh)), params_(startup_) {
   if (startup_.release_freed_memory && !mapLargeBlocksAlone(kLargeBlockBytes)) {
-    ROS_WARN("amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
+    ROS_WARN(
+        "amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
   }
   queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(startup_.max_queued_requests));
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
@@ -57,7 +58,8 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
   ros::NodeHandle action_nh(pnh_);
   action_nh.setCallbackQueue(&action_queue_);
   action_server_ = std::make_unique<ActionServer>(
-      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); }, [this](GoalHandle g) { onCancel(g); });
+      action_nh, "plan_anytime", [this](GoalHandle g) { onGoal(g); },
+      [this](GoalHandle g) { onCancel(g); });
   action_server_->setGlobalFrame(startup_.global_frame);
   action_server_->start();
 
@@ -71,14 +73,16 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
 
   // ~set_parameters (rqt_reconfigure), starting from the loaded values rather than the .cfg's
   // defaults; its services run on the node's own callback queue.
-  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<AmhaPlannerConfig>>(reconfigure_mutex_, pnh_);
+  reconfigure_ =
+      std::make_unique<dynamic_reconfigure::Server<AmhaPlannerConfig>>(reconfigure_mutex_, pnh_);
   reconfigure_->updateConfig(configFromParams(startup_));
-  reconfigure_->setCallback([this](AmhaPlannerConfig& c, std::uint32_t level) { onReconfigure(c, level); });
+  reconfigure_->setCallback(
+      [this](AmhaPlannerConfig& c, std::uint32_t level) { onReconfigure(c, level); });
 
-  ROS_INFO_STREAM("amha_planner: ready; algorithm " << amha::algorithmName(startup_.algorithm)
-                  << ", global frame '" << startup_.global_frame << "', robot frame '"
-                  << startup_.robot_base_frame << "', waiting for a map on "
-                  << map_tracker_->mapTopic());
+  ROS_INFO_STREAM("amha_planner: ready; algorithm "
+                  << amha::algorithmName(startup_.algorithm) << ", global frame '"
+                  << startup_.global_frame << "', robot frame '" << startup_.robot_base_frame
+                  << "', waiting for a map on " << map_tracker_->mapTopic());
 }
 
 PlannerServer::~PlannerServer() {
@@ -116,23 +120,25 @@ void PlannerServer::onReconfigure(AmhaPlannerConfig& config, std::uint32_t) {
   }
   const std::string what = changedParameters(in_force, config);
   if (!ok) {
-    ROS_ERROR("amha_planner: reconfiguration refused (%s): %s; the parameters stay as they were", what.c_str(),
-              error.c_str());
+    ROS_ERROR("amha_planner: reconfiguration refused (%s): %s; the parameters stay as they were",
+              what.c_str(), error.c_str());
     config = in_force;  // what the reply (and rqt_reconfigure) then shows
     return;
   }
   const bool have_map = map_tracker_->setParams(std::move(next), rebuild);
   ROS_INFO("amha_planner: reconfigured: %s; %s", what.c_str(),
            !rebuild ? "in force for the requests that start planning from now on"
-                    : have_map ? "rebuilding the planner from the current map (requests from now on wait for it)"
-                               : "in force from the first map");
+           : have_map
+               ? "rebuilding the planner from the current map (requests from now on wait for it)"
+               : "in force from the first map");
 }
 
 void PlannerServer::releaseFreedMemory() {
   if (!startup_.release_freed_memory) return;  // start-up only: see the constructor
   const FreedMemory f = freed_memory_.releaseIfMuchFreed();
   if (f.trimmed) {
-    ROS_DEBUG("amha_planner: returned freed memory to the system (%.0f MB free in the heap)", f.free_bytes / 1e6);
+    ROS_DEBUG("amha_planner: returned freed memory to the system (%.0f MB free in the heap)",
+              f.free_bytes / 1e6);
   }
 }
 
@@ -149,9 +155,11 @@ void PlannerServer::releaseCancelFlag(const std::shared_ptr<std::atomic<bool>>& 
   cancel_flags_.erase(flag);
 }
 
-geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string& target, const std::string& source,
-                                                              const ros::Time& time, double timeout,
-                                                              const std::atomic<bool>* cancel) {
+geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string& target,
+                                                               const std::string& source,
+                                                               const ros::Time& time,
+                                                               double timeout,
+                                                               const std::atomic<bool>* cancel) {
   // canTransform in slices instead of one wait of tf_timeout: a cancel ends the wait at once.
   const auto until = std::chrono::steady_clock::now() +
                      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -163,16 +171,17 @@ geometry_msgs::TransformStamped PlannerServer::lookupTransform(const std::string
   return tf_buffer_.lookupTransform(target, source, time);
 }
 
-bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
-                                  geometry_msgs::PoseStamped* out, Plan::Response* res,
-                                  const std::atomic<bool>& cancel) {
+bool PlannerServer::toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start,
+                                  double tf_timeout, geometry_msgs::PoseStamped* out,
+                                  Plan::Response* res, const std::atomic<bool>& cancel) {
   const char* what = is_start ? "start" : "goal";
   const std::string& global = startup_.global_frame;
   std::string frame = normaliseFrame(in.header.frame_id);
   if (frame.empty() && is_start) {
     // The robot's current pose.
     try {
-      const auto t = lookupTransform(global, startup_.robot_base_frame, ros::Time(0), tf_timeout, &cancel);
+      const auto t =
+          lookupTransform(global, startup_.robot_base_frame, ros::Time(0), tf_timeout, &cancel);
       out->header = t.header;
       out->header.frame_id = global;
       out->pose.position.x = t.transform.translation.x;
@@ -239,8 +248,9 @@ Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
     // The budget counts from here: the transforms and the wait for the newest map's planner use
     // it too. Poses come first: their errors do not depend on the map.
     const auto started = std::chrono::steady_clock::now();
-    const auto deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                        std::chrono::duration<double>(std::min(query.time_budget, 1e9)));
+    const auto deadline =
+        started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(std::min(query.time_budget, 1e9)));
     geometry_msgs::PoseStamped start, goal;
     try {
       if (!toGlobalFrame(r.start, true, params->tf_timeout, &start, &res, cancel)) return res;
@@ -254,25 +264,30 @@ Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
       case MapTracker::Wait::kReady:
         break;
       case MapTracker::Wait::kCancelled:
-        return answer(Status::CANCELLED, shutting_down_ ? "the planner is shutting down"
-                                                        : "cancelled while the newest map's planner was being built");
+        return answer(Status::CANCELLED,
+                      shutting_down_ ? "the planner is shutting down"
+                                     : "cancelled while the newest map's planner was being built");
       case MapTracker::Wait::kTimeUp:
-        return answer(Status::TIME_EXHAUSTED,
-                      budgetUsedUp(query.time_budget) + " while the newest map's planner was being built");
+        return answer(
+            Status::TIME_EXHAUSTED,
+            budgetUsedUp(query.time_budget) + " while the newest map's planner was being built");
     }
     const auto planner = map_tracker_->currentPlanner();
     if (!planner) {
-      return answer(Status::NO_MAP, noMapMessage(map_tracker_->mapTopic(), map_tracker_->refusedMapReason()));
+      return answer(Status::NO_MAP,
+                    noMapMessage(map_tracker_->mapTopic(), map_tracker_->refusedMapReason()));
     }
     const lat::Pose2D s = pose2DFromPose(start.pose), g = pose2DFromPose(goal.pose);
 
     amha::SearchLimits limits;
-    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     limits.time_limit_s = std::max(0.0, query.time_budget - waited);
     limits.cancel = &cancel;
     limits.max_memory_bytes = static_cast<std::size_t>(params->max_memory_mb * 1024.0 * 1024.0);
     std::vector<lat::Pose2D> best_poses;  // of the path published last
-    const lat::PlanResult result = search(*planner, *params, query, s, g, limits, sink, &res, &best_poses);
+    const lat::PlanResult result =
+        search(*planner, *params, query, s, g, limits, sink, &res, &best_poses);
     const ResponseContext context{frame, stamp, query.time_budget, params->max_memory_mb};
     completeResponse(result, best_poses, context, &res);
   } catch (const std::exception& e) {
@@ -283,9 +298,10 @@ Plan::Response PlannerServer::execute(const PlannerRequest& r, std::uint32_t id,
 }
 
 lat::PlanResult PlannerServer::search(lat::LatticePlanner& planner, const PlannerParams& params,
-                                      const PlanQuery& query, const lat::Pose2D& s, const lat::Pose2D& g,
-                                      const amha::SearchLimits& limits, const SolutionSink& sink,
-                                      Plan::Response* res, std::vector<lat::Pose2D>* best_poses) {
+                                      const PlanQuery& query, const lat::Pose2D& s,
+                                      const lat::Pose2D& g, const amha::SearchLimits& limits,
+                                      const SolutionSink& sink, Plan::Response* res,
+                                      std::vector<lat::Pose2D>* best_poses) {
   const std::uint32_t id = res->request_id;
   const std::string& frame = startup_.global_frame;
   const ros::Time stamp = res->path.header.stamp;
@@ -313,7 +329,8 @@ lat::PlanResult PlannerServer::search(lat::LatticePlanner& planner, const Planne
         shown = &step.published;
         smoothed = true;
       } catch (const std::exception& e) {
-        ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id, e.what());
+        ROS_ERROR("amha_planner: request %u: smoothing failed, publishing the lattice path: %s", id,
+                  e.what());
       }
     }
     if (!smoothed) {
@@ -336,10 +353,11 @@ lat::PlanResult PlannerServer::search(lat::LatticePlanner& planner, const Planne
     if (same_lattice_path) m.lattice_path.poses.clear();
     res->solutions.push_back(std::move(m));
   };
-  lat::PlanResult result = planner.plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
+  lat::PlanResult result =
+      planner.plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
   if (result.error == lat::QueryError::kNone) {
-    ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id, lat::heuristicSourceName(result.heuristic_source),
-              result.heuristic_seconds);
+    ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id,
+              lat::heuristicSourceName(result.heuristic_source), result.heuristic_seconds);
   }
   return result;
 }
@@ -379,8 +397,7 @@ bool PlannerServer::onPlan(Plan::Request& req, Plan::Response& res) {
   return true;
 }
 
-bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req,
-                               nav_msgs::GetPlan::Response& res) {
+bool PlannerServer::onMakePlan(nav_msgs::GetPlan::Request& req, nav_msgs::GetPlan::Response& res) {
   const Plan::Response out = runBlocking(requestFrom(req));
   logOutcome("make_plan", out);
   // Like move_base's make_plan: an empty plan means failure (the log says why).
@@ -397,29 +414,32 @@ void PlannerServer::onGoal(GoalHandle goal) {
   job->request_id = id;
 
   std::lock_guard<std::mutex> lock(goals_mutex_);
-  const bool queued = queue_->submit([this, goal, r, id, job, goal_id]() mutable {
-    { std::lock_guard<std::mutex> accepted(goals_mutex_); }  // setAccepted() has run
-    int queued_phase = GoalJob::kQueued;
-    if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kRunning)) {
-      Plan::Response res = execute(r, id, *job->cancel, [&goal](const PlanSolution& s) {
-        PlanAnytimeFeedback feedback;
-        feedback.solution = s;
-        goal.publishFeedback(feedback);
-      });
-      logOutcome("plan_anytime", res);
-      finishGoal(goal, std::move(res));
-      job->phase = GoalJob::kDone;
-      {
-        std::lock_guard<std::mutex> done(goals_mutex_);
-        goal_jobs_.erase(goal_id);
-      }
-    }  // else onCancel answered it while it waited
-    releaseCancelFlag(job->cancel);
-    releaseFreedMemory();
-  }, &job->ticket);
+  const bool queued = queue_->submit(
+      [this, goal, r, id, job, goal_id]() mutable {
+        { std::lock_guard<std::mutex> accepted(goals_mutex_); }  // setAccepted() has run
+        int queued_phase = GoalJob::kQueued;
+        if (job->phase.compare_exchange_strong(queued_phase, GoalJob::kRunning)) {
+          Plan::Response res = execute(r, id, *job->cancel, [&goal](const PlanSolution& s) {
+            PlanAnytimeFeedback feedback;
+            feedback.solution = s;
+            goal.publishFeedback(feedback);
+          });
+          logOutcome("plan_anytime", res);
+          finishGoal(goal, std::move(res));
+          job->phase = GoalJob::kDone;
+          {
+            std::lock_guard<std::mutex> done(goals_mutex_);
+            goal_jobs_.erase(goal_id);
+          }
+        }  // else onCancel answered it while it waited
+        releaseCancelFlag(job->cancel);
+        releaseFreedMemory();
+      },
+      &job->ticket);
   if (!queued) {
     releaseCancelFlag(job->cancel);
-    const PlanAnytimeResult busy = actionResult(busyResponse(id, startup_.max_queued_requests, startup_.global_frame));
+    const PlanAnytimeResult busy =
+        actionResult(busyResponse(id, startup_.max_queued_requests, startup_.global_frame));
     ROS_WARN("amha_planner: plan_anytime request %u: BUSY", id);
     goal.setRejected(busy, busy.message);
     return;
@@ -458,9 +478,10 @@ void PlannerServer::onCancel(GoalHandle goal) {
     // Its place in the queue goes to the next request at once (else the job, when the worker
     // takes it, finds it done and releases the flag itself).
     if (queue_->removeWaiting(job->ticket)) releaseCancelFlag(job->cancel);
-    Plan::Response res = responseWithoutPath(job->request_id, Status::CANCELLED,
-                                             "cancelled while waiting in the queue: no planning was done",
-                                             startup_.global_frame, ros::Time::now());
+    Plan::Response res =
+        responseWithoutPath(job->request_id, Status::CANCELLED,
+                            "cancelled while waiting in the queue: no planning was done",
+                            startup_.global_frame, ros::Time::now());
     logOutcome("plan_anytime", res);
     finishGoal(goal, std::move(res));
     goal_jobs_.erase(it);

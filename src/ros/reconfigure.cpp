@@ -60,7 +60,8 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   c.stall_w1 = p.stall_w1;
   c.kinematic_radius = l.heuristics.kinematic_radius;
   c.anchor_connectivity = l.heuristics.anchor_connectivity;
-  c.inadmissible_heuristics = l.heuristics.inadmissible == lat::LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
+  c.inadmissible_heuristics =
+      l.heuristics.inadmissible == lat::LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
   c.eps = p.eps;
   c.eps_decrement = p.eps_decrement;
   c.default_time_budget = p.default_time_budget;
@@ -94,50 +95,71 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   return c;
 }
 
-bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, const ros::NodeHandle& pnh,
-                      PlannerParams* out, std::string* error) {
+bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base,
+                      const ros::NodeHandle& pnh, PlannerParams* out, std::string* error) {
   auto fail = [&](const std::string& name, const std::string& problem) {
     *error = "parameter " + pnh.resolveName(name) + ": " + problem;
     return false;
   };
   // dynamic_reconfigure clamps numbers into their ranges, but a NaN passes every comparison.
   const std::pair<const char*, double> numbers[] = {
-      {"w1", c.w1}, {"w2", c.w2}, {"dw1", c.dw1}, {"dw2", c.dw2}, {"eps", c.eps}, {"eps_decrement", c.eps_decrement},
-      {"default_time_budget", c.default_time_budget}, {"max_memory_mb", c.max_memory_mb},
-      {"start_tolerance", c.start_tolerance}, {"start_escape_penalty", c.start_escape_penalty},
-      {"tf_timeout", c.tf_timeout}, {"robot_radius", c.robot_radius}, {"turning_radius", c.turning_radius},
-      {"certified_ratio", c.certified_ratio}, {"certified_split", c.certified_split}, {"final_gap", c.final_gap},
-      {"kinematic_radius", c.kinematic_radius}, {"stall_w1", c.stall_w1},
-      {"nominal_speed", c.nominal_speed}, {"time_to_turn_45", c.time_to_turn_45},
-      {"cost_penalty", c.cost_penalty}, {"marker_spacing", c.marker_spacing}};
+      {"w1", c.w1},
+      {"w2", c.w2},
+      {"dw1", c.dw1},
+      {"dw2", c.dw2},
+      {"eps", c.eps},
+      {"eps_decrement", c.eps_decrement},
+      {"default_time_budget", c.default_time_budget},
+      {"max_memory_mb", c.max_memory_mb},
+      {"start_tolerance", c.start_tolerance},
+      {"start_escape_penalty", c.start_escape_penalty},
+      {"tf_timeout", c.tf_timeout},
+      {"robot_radius", c.robot_radius},
+      {"turning_radius", c.turning_radius},
+      {"certified_ratio", c.certified_ratio},
+      {"certified_split", c.certified_split},
+      {"final_gap", c.final_gap},
+      {"kinematic_radius", c.kinematic_radius},
+      {"stall_w1", c.stall_w1},
+      {"nominal_speed", c.nominal_speed},
+      {"time_to_turn_45", c.time_to_turn_45},
+      {"cost_penalty", c.cost_penalty},
+      {"marker_spacing", c.marker_spacing}};
   for (const auto& [name, v] : numbers) {
     if (!std::isfinite(v)) return fail(name, "expected a number, got " + exact(v));
   }
   // -1 stands for the algorithm's preset (as when the ~parameter is not set).
-  for (const auto& [name, v] : {std::make_pair("w1", c.w1), std::make_pair("w2", c.w2), std::make_pair("eps", c.eps)}) {
-    if (v != -1.0 && v < 1.0) return fail(name, exact(v) + " is neither -1 (the algorithm's preset) nor >= 1");
+  for (const auto& [name, v] :
+       {std::make_pair("w1", c.w1), std::make_pair("w2", c.w2), std::make_pair("eps", c.eps)}) {
+    if (v != -1.0 && v < 1.0)
+      return fail(name, exact(v) + " is neither -1 (the algorithm's preset) nor >= 1");
   }
   for (const auto& [name, v] : {std::make_pair("dw1", c.dw1), std::make_pair("dw2", c.dw2),
                                 std::make_pair("eps_decrement", c.eps_decrement)}) {
-    if (v != -1.0 && v < 0.0) return fail(name, exact(v) + " is neither -1 (the algorithm's preset) nor >= 0");
+    if (v != -1.0 && v < 0.0)
+      return fail(name, exact(v) + " is neither -1 (the algorithm's preset) nor >= 0");
   }
   PlannerParams p = base;
   if (!amha::parseAlgorithm(c.algorithm, &p.algorithm)) {
-    return fail("algorithm", "unknown algorithm '" + c.algorithm + "' (amha, mha, ara, ana, wastar, astar)");
+    return fail("algorithm",
+                "unknown algorithm '" + c.algorithm + "' (amha, mha, ara, ana, wastar, astar)");
   }
   if (!amha::parseSchedule(c.queue_schedule, &p.queue_schedule)) {
     return fail("queue_schedule", "unknown schedule '" + c.queue_schedule + "' (rr, dts)");
   }
   if (!amha::parseWeightSchedule(c.weight_schedule, &p.weight_schedule)) {
-    return fail("weight_schedule", "unknown schedule '" + c.weight_schedule + "' (certified, decrement)");
+    return fail("weight_schedule",
+                "unknown schedule '" + c.weight_schedule + "' (certified, decrement)");
   }
   if (c.anchor_connectivity != 8 && c.anchor_connectivity != 16) {
     return fail("anchor_connectivity", std::to_string(c.anchor_connectivity) + " is not 8 or 16");
   }
   if (c.inadmissible_heuristics != "kinematic" && c.inadmissible_heuristics != "paper") {
-    return fail("inadmissible_heuristics", "'" + c.inadmissible_heuristics + "' is not kinematic or paper");
+    return fail("inadmissible_heuristics",
+                "'" + c.inadmissible_heuristics + "' is not kinematic or paper");
   }
-  if (c.num_headings % 8 != 0) return fail("num_headings", std::to_string(c.num_headings) + " is not a multiple of 8");
+  if (c.num_headings % 8 != 0)
+    return fail("num_headings", std::to_string(c.num_headings) + " is not a multiple of 8");
   lat::LatticeConfig& l = p.lattice;
   try {
     l.robot.footprint = footprintFromString(pnh, c.footprint);
@@ -159,8 +181,9 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base, con
   p.stall_w1 = c.stall_w1;
   l.heuristics.kinematic_radius = c.kinematic_radius;
   l.heuristics.anchor_connectivity = c.anchor_connectivity;
-  l.heuristics.inadmissible = c.inadmissible_heuristics == "paper" ? lat::LatticeConfig::Inadmissible::kPaper
-                                                        : lat::LatticeConfig::Inadmissible::kKinematic;
+  l.heuristics.inadmissible = c.inadmissible_heuristics == "paper"
+                                  ? lat::LatticeConfig::Inadmissible::kPaper
+                                  : lat::LatticeConfig::Inadmissible::kKinematic;
   p.default_time_budget = c.default_time_budget;
   p.max_memory_mb = c.max_memory_mb;
   p.ignore_goal_heading = c.ignore_goal_heading;
@@ -206,8 +229,9 @@ bool latticeBuilds(const PlannerParams& params, const lat::GridMap* map, std::st
     // map: the probe below is only as large as the robot.
     const double inscribed = footprint.inscribed_radius;
     if (2.0 * inscribed > std::min(map->width, map->height) * res) {
-      *error = "robot footprint: its inscribed circle (radius " + exact(inscribed) + " m) is wider than the current map (" +
-               exact(map->width * res) + " x " + exact(map->height * res) + " m): no pose on it is collision-free";
+      *error = "robot footprint: its inscribed circle (radius " + exact(inscribed) +
+               " m) is wider than the current map (" + exact(map->width * res) + " x " +
+               exact(map->height * res) + " m): no pose on it is collision-free";
       return false;
     }
     // A free map of that resolution, just large enough for the robot: what else a build checks
@@ -235,7 +259,8 @@ std::string changedParameters(const AmhaPlannerConfig& from, const AmhaPlannerCo
     for (const auto& n : news) {
       for (const auto& o : olds) {
         if (o.name != n.name || o.value == n.value) continue;
-        s << (s.tellp() > 0 ? ", " : "") << n.name << " " << text(o.value) << " -> " << text(n.value);
+        s << (s.tellp() > 0 ? ", " : "") << n.name << " " << text(o.value) << " -> "
+          << text(n.value);
       }
     }
   };

@@ -11,8 +11,15 @@ namespace {
 /// PlannerRequest's order; PlannerRequest.* in request_conversion_test checks each).
 template <class Message>
 PlannerRequest requestFromPlanFields(const Message& m) {
-  return PlannerRequest{m.start, m.goal, m.time_budget, m.algorithm, m.w1, m.w2,
-                        m.goal_tolerance, m.ignore_goal_heading != 0, m.start_tolerance};
+  return PlannerRequest{m.start,
+                        m.goal,
+                        m.time_budget,
+                        m.algorithm,
+                        m.w1,
+                        m.w2,
+                        m.goal_tolerance,
+                        m.ignore_goal_heading != 0,
+                        m.start_tolerance};
 }
 
 }  // namespace
@@ -29,7 +36,8 @@ PlannerRequest requestFrom(const nav_msgs::GetPlan::Request& req) {
   return r;
 }
 
-bool queryFor(const PlannerRequest& r, const PlannerParams& params, PlanQuery* q, std::string* error) {
+bool queryFor(const PlannerRequest& r, const PlannerParams& params, PlanQuery* q,
+              std::string* error) {
   if (!searchConfigFor(params, r.algorithm, r.w1, r.w2, &q->config, error)) return false;
   q->time_budget = r.time_budget == 0.0 ? params.default_time_budget : r.time_budget;
   if (!std::isfinite(q->time_budget) || q->time_budget < 0.0) {

@@ -12,7 +12,7 @@ namespace lat = amha::lattice;
 using Status = Plan::Response;
 
 // The action result repeats the service's codes; keep them identical.
-#define AMHA_SAME_CODE(c) \
+#define AMHA_SAME_CODE(c)                                                                        \
   static_assert(static_cast<unsigned>(Status::c) == static_cast<unsigned>(PlanAnytimeResult::c), \
                 "Plan.srv and PlanAnytime.action disagree on " #c)
 AMHA_SAME_CODE(SUCCESS);
@@ -46,7 +46,8 @@ struct Outcome {
 
 /// The status and message of a search that ended with `status`; `best` describes its best
 /// solution, or is null when it found none.
-Outcome searchOutcome(amha::SearchStatus status, const std::string* best, const ResponseContext& c) {
+Outcome searchOutcome(amha::SearchStatus status, const std::string* best,
+                      const ResponseContext& c) {
   using S = amha::SearchStatus;
   const std::string so_far = best ? "; returning the best path so far: " + *best : "";
   switch (status) {
@@ -62,17 +63,24 @@ Outcome searchOutcome(amha::SearchStatus status, const std::string* best, const 
     case S::kMemoryLimit:
       if (!best) {
         return {Status::MEMORY_EXHAUSTED,
-                "memory cap of " + fmt(c.max_memory_mb, 0) + " MB (~max_memory_mb) reached before any path was found"};
+                "memory cap of " + fmt(c.max_memory_mb, 0) +
+                    " MB (~max_memory_mb) reached before any path was found"};
       }
       [[fallthrough]];
     case S::kExpansionLimit:
-      if (best) return {Status::SUCCESS, std::string("search stopped (") + amha::statusName(status) + ")" + so_far};
+      if (best)
+        return {Status::SUCCESS,
+                std::string("search stopped (") + amha::statusName(status) + ")" + so_far};
       break;
     case S::kCancelled:
-      return {Status::CANCELLED, best ? "cancelled" + so_far : "cancelled before any path was found"};
+      return {Status::CANCELLED,
+              best ? "cancelled" + so_far : "cancelled before any path was found"};
     case S::kNoSolution:
-      if (best) return {Status::INTERNAL_ERROR, "the search reported no solution after finding one: " + *best};
-      return {Status::NO_PATH_FOUND, "no path: the goal cannot be reached from the start on this map"};
+      if (best)
+        return {Status::INTERNAL_ERROR,
+                "the search reported no solution after finding one: " + *best};
+      return {Status::NO_PATH_FOUND,
+              "no path: the goal cannot be reached from the start on this map"};
   }
   return {Status::INTERNAL_ERROR,
           std::string("the search ended (") + amha::statusName(status) + ") without a solution"};
@@ -82,8 +90,8 @@ Outcome searchOutcome(amha::SearchStatus status, const std::string* best, const 
 /// when the best was smoothed).
 std::string solutionsSummary(const std::vector<PlanSolution>& solutions) {
   const PlanSolution& best = solutions.back();
-  return std::to_string(solutions.size()) + " solution(s), best cost " + fmt(best.cost) + " m, bound " +
-         fmt(best.bound, 2) + ", certified " + fmt(best.certified_bound, 2) +
+  return std::to_string(solutions.size()) + " solution(s), best cost " + fmt(best.cost) +
+         " m, bound " + fmt(best.bound, 2) + ", certified " + fmt(best.certified_bound, 2) +
          (best.smoothed ? " (smoothed; lattice path " + fmt(best.lattice_cost) + " m)" : "");
 }
 
@@ -111,19 +119,32 @@ void moveResponse(Plan::Response&& in, Result* out) {
 
 const char* statusCodeName(std::uint32_t s) {
   switch (s) {
-    case Status::SUCCESS: return "SUCCESS";
-    case Status::CANCELLED: return "CANCELLED";
-    case Status::INVALID_START: return "INVALID_START";
-    case Status::INVALID_GOAL: return "INVALID_GOAL";
-    case Status::NO_PATH_FOUND: return "NO_PATH_FOUND";
-    case Status::TIME_EXHAUSTED: return "TIME_EXHAUSTED";
-    case Status::MEMORY_EXHAUSTED: return "MEMORY_EXHAUSTED";
-    case Status::TF_ERROR: return "TF_ERROR";
-    case Status::NO_MAP: return "NO_MAP";
-    case Status::INVALID_REQUEST: return "INVALID_REQUEST";
-    case Status::INTERNAL_ERROR: return "INTERNAL_ERROR";
-    case Status::OUT_OF_MAP: return "OUT_OF_MAP";
-    case Status::BUSY: return "BUSY";
+    case Status::SUCCESS:
+      return "SUCCESS";
+    case Status::CANCELLED:
+      return "CANCELLED";
+    case Status::INVALID_START:
+      return "INVALID_START";
+    case Status::INVALID_GOAL:
+      return "INVALID_GOAL";
+    case Status::NO_PATH_FOUND:
+      return "NO_PATH_FOUND";
+    case Status::TIME_EXHAUSTED:
+      return "TIME_EXHAUSTED";
+    case Status::MEMORY_EXHAUSTED:
+      return "MEMORY_EXHAUSTED";
+    case Status::TF_ERROR:
+      return "TF_ERROR";
+    case Status::NO_MAP:
+      return "NO_MAP";
+    case Status::INVALID_REQUEST:
+      return "INVALID_REQUEST";
+    case Status::INTERNAL_ERROR:
+      return "INTERNAL_ERROR";
+    case Status::OUT_OF_MAP:
+      return "OUT_OF_MAP";
+    case Status::BUSY:
+      return "BUSY";
   }
   return "UNKNOWN";
 }
@@ -131,19 +152,25 @@ const char* statusCodeName(std::uint32_t s) {
 std::uint32_t statusForQueryError(lat::QueryError e) {
   switch (e) {
     case lat::QueryError::kStartNotFinite:
-    case lat::QueryError::kStartInCollision: return Status::INVALID_START;
+    case lat::QueryError::kStartInCollision:
+      return Status::INVALID_START;
     case lat::QueryError::kGoalNotFinite:
-    case lat::QueryError::kGoalInCollision: return Status::INVALID_GOAL;
-    case lat::QueryError::kGoalUnreachable: return Status::NO_PATH_FOUND;
+    case lat::QueryError::kGoalInCollision:
+      return Status::INVALID_GOAL;
+    case lat::QueryError::kGoalUnreachable:
+      return Status::NO_PATH_FOUND;
     case lat::QueryError::kStartOutOfMap:
-    case lat::QueryError::kGoalOutOfMap: return Status::OUT_OF_MAP;
-    case lat::QueryError::kNone: break;
+    case lat::QueryError::kGoalOutOfMap:
+      return Status::OUT_OF_MAP;
+    case lat::QueryError::kNone:
+      break;
   }
   return Status::INTERNAL_ERROR;
 }
 
-Plan::Response responseWithoutPath(std::uint32_t request_id, std::uint32_t status, std::string message,
-                                   const std::string& frame, const ros::Time& stamp) {
+Plan::Response responseWithoutPath(std::uint32_t request_id, std::uint32_t status,
+                                   std::string message, const std::string& frame,
+                                   const ros::Time& stamp) {
   Plan::Response res;
   res.request_id = request_id;
   res.status = status;
@@ -153,19 +180,23 @@ Plan::Response responseWithoutPath(std::uint32_t request_id, std::uint32_t statu
   return res;
 }
 
-Plan::Response busyResponse(std::uint32_t request_id, int max_queued_requests, const std::string& frame) {
+Plan::Response busyResponse(std::uint32_t request_id, int max_queued_requests,
+                            const std::string& frame) {
   return responseWithoutPath(request_id, Status::BUSY,
-                             "busy: one request is planning and " + std::to_string(max_queued_requests) +
+                             "busy: one request is planning and " +
+                                 std::to_string(max_queued_requests) +
                                  " are waiting (~max_queued_requests); try again later",
                              frame);
 }
 
-std::string budgetUsedUp(double seconds) { return "time budget of " + fmt(seconds, 2) + " s used up"; }
+std::string budgetUsedUp(double seconds) {
+  return "time budget of " + fmt(seconds, 2) + " s used up";
+}
 
 std::string noMapMessage(const std::string& map_topic, const std::string& refused_reason) {
-  return refused_reason.empty()
-             ? "no valid map received on " + map_topic + " yet"
-             : "no usable map on " + map_topic + " yet: the last one was refused: " + refused_reason;
+  return refused_reason.empty() ? "no valid map received on " + map_topic + " yet"
+                                : "no usable map on " + map_topic +
+                                      " yet: the last one was refused: " + refused_reason;
 }
 
 void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose2D>& best_poses,
@@ -180,7 +211,8 @@ void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose
   const std::string& frame = context.frame;
   const ros::Time& stamp = context.stamp;
   res->goal_substituted = result.goal_substituted;
-  if (result.planned_goal) res->planned_goal = poseStampedFromPose2D(*result.planned_goal, frame, stamp);
+  if (result.planned_goal)
+    res->planned_goal = poseStampedFromPose2D(*result.planned_goal, frame, stamp);
   res->start_escaped = result.start_escaped;
   if (result.start_escaped && !result.solutions.empty()) {
     const lat::LatticeSolution& best = result.solutions.back();
@@ -195,7 +227,8 @@ void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose
     res->certified_bound = best.certified_bound;
     summary = solutionsSummary(res->solutions);
   }
-  Outcome outcome = searchOutcome(result.search.status, res->solutions.empty() ? nullptr : &summary, context);
+  Outcome outcome =
+      searchOutcome(result.search.status, res->solutions.empty() ? nullptr : &summary, context);
   res->status = outcome.status;
   // Told after the outcome: "...; start (..) is in collision; the path leaves it by ...",
   // "...; goal (..) is in collision; planning to ... instead".

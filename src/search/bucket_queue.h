@@ -15,8 +15,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "realloc_vector.h"
 #include "amha_planner/search/types.h"
+#include "realloc_vector.h"
 
 namespace amha {
 namespace detail {
@@ -148,8 +148,8 @@ class BucketQueue {
   struct FBucket {
     std::vector<std::uint32_t> heads;  // per h - base: its newest block, or kNone
     HeuristicValue base = 0;
-    HeuristicValue min_h = 0;          // lowest non-empty stack while count > 0
-    std::size_t count = 0;             // entries in the bucket
+    HeuristicValue min_h = 0;  // lowest non-empty stack while count > 0
+    std::size_t count = 0;     // entries in the bucket
 
     void reset() {
       std::fill(heads.begin(), heads.end(), kNone);

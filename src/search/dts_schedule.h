@@ -60,7 +60,7 @@ class DtsSchedule {
     GammaShape alpha_shape, beta_shape;
     HeuristicValue best_h = kInfiniteHeuristic;
   };
-  double uniform();                      // in (0, 1)
+  double uniform();                       // in (0, 1)
   double gamma(const GammaShape& shape);  // Gamma(shape, 1), shape >= 1
 
   std::vector<Arm> arms_;  // arms_[0] (the anchor) is unused

@@ -36,7 +36,7 @@ std::atomic<std::size_t> g_live{0};  // bytes mapped for blocks in use (not pool
 struct Pool {
   std::mutex mutex;
   std::vector<std::pair<void*, std::size_t>> blocks;  // (mapping, size)
-  std::size_t pooled = 0;                              // their sizes' sum
+  std::size_t pooled = 0;                             // their sizes' sum
 };
 
 Pool& pool() {

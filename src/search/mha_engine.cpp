@@ -101,7 +101,9 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   goal_improved_ = false;
   incons_this_iteration_ = false;
   known_nominal_ = std::numeric_limits<double>::infinity();
-  known_lb_ = h(start, kAnchor) == kInfiniteHeuristic ? 0 : static_cast<Cost>(h(start, kAnchor));  // h0 is admissible
+  known_lb_ = h(start, kAnchor) == kInfiniteHeuristic
+                  ? 0
+                  : static_cast<Cost>(h(start, kAnchor));  // h0 is admissible
   if (h(start, kAnchor) != kInfiniteHeuristic) {
     const QueueEntry k0 = key(start, kAnchor);
     pushOpen(kAnchor, k0);
@@ -152,7 +154,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
 void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) {
   if (opt_.weight_schedule == WeightSchedule::kCertified) {
     // Below the bound already earned, so that the iteration must expand (and may improve the
-    // path): its stop test g(goal) <= w2 min key_0 fails while w1 w2 < cost / LB (key_0 <= w1 (g + h0)).
+    // path): its stop test g(goal) <= w2 min key_0 fails while w1 w2 < cost / LB (key_0 <= w1 (g +
+    // h0)).
     const double c = std::min(certified, w1_ * w2_);
     double bound = 1.0 + opt_.certified_ratio * (c - 1.0);
     if (bound - 1.0 <= opt_.final_gap) bound = 1.0;
@@ -161,8 +164,8 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
     return;
   }
   // The paper's decrements. An iteration whose stop test already holds after the re-keying
-  // (g(goal) <= w2 min over OPEN_0 u INCONS of the anchor's key) expands nothing and reports the same
-  // path again: it is skipped (the search after it is the same), so that a large w1 does not
+  // (g(goal) <= w2 min over OPEN_0 u INCONS of the anchor's key) expands nothing and reports the
+  // same path again: it is skipped (the search after it is the same), so that a large w1 does not
   // report millions of copies. The test's right side falls with every decrement, so the
   // iterations that stop at once come first: a binary search finds the first that does not.
   // members_ is OPEN_0 u INCONS (collectOpen0AndIncons).
@@ -184,8 +187,12 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
   };
   // The number of decrements to reach (1, 1), and the first k >= 1 whose iteration runs.
   std::uint64_t last = 1;
-  if (opt_.dw1 > 0.0) last = std::max<std::uint64_t>(last, static_cast<std::uint64_t>(std::ceil((w1_ - 1.0) / opt_.dw1)));
-  if (opt_.dw2 > 0.0) last = std::max<std::uint64_t>(last, static_cast<std::uint64_t>(std::ceil((w2_ - 1.0) / opt_.dw2)));
+  if (opt_.dw1 > 0.0)
+    last = std::max<std::uint64_t>(last,
+                                   static_cast<std::uint64_t>(std::ceil((w1_ - 1.0) / opt_.dw1)));
+  if (opt_.dw2 > 0.0)
+    last = std::max<std::uint64_t>(last,
+                                   static_cast<std::uint64_t>(std::ceil((w2_ - 1.0) / opt_.dw2)));
   std::uint64_t lo = 1, hi = last;  // stopsAtOnce is true below the answer, false from it on
   while (lo < hi) {
     const std::uint64_t mid = lo + (hi - lo) / 2;
@@ -230,8 +237,8 @@ bool MhaEngine::improvePath() {
     // on the optimal cost (collectOpen0AndIncons), at every step: the certified bound of the
     // path in hand tightens as the anchor goes. Publish it when it has halved its gap since the
     // last report (publish_improvements), so that a long proof is not silent.
-    if (opt_.publish_improvements && w1_ <= 1.0 && !incons_this_iteration_ && !result_.solutions.empty() &&
-        goal_g < kInfiniteCost) {
+    if (opt_.publish_improvements && w1_ <= 1.0 && !incons_this_iteration_ &&
+        !result_.solutions.empty() && goal_g < kInfiniteCost) {
       const Solution& last = result_.solutions.back();
       const Cost lb = static_cast<Cost>(min0);
       if (lb > known_lb_) {
@@ -245,8 +252,8 @@ bool MhaEngine::improvePath() {
     if (limitHit()) return false;
     // No path yet after the stall budget: on to an iteration with a larger w1 (stall_w1), from
     // OPEN_0 u INCONS as line 38 would, once.
-    if (iteration_ == 0 && opt_.anytime && opt_.stall_expansions > 0 && expansions_ >= opt_.stall_expansions &&
-        goal_g >= kInfiniteCost && opt_.stall_w1 > w1_) {
+    if (iteration_ == 0 && opt_.anytime && opt_.stall_expansions > 0 &&
+        expansions_ >= opt_.stall_expansions && goal_g >= kInfiniteCost && opt_.stall_w1 > w1_) {
       collectOpen0AndIncons();
       ++iteration_;
       if (!prepareNextIteration(opt_.stall_w1, w2_)) return false;
@@ -405,7 +412,8 @@ void MhaEngine::checkInvariants() const {
       if (i > 0) {
         if (flags(s) & kClosedInad) fail("CLOSED_inad state in OPEN_" + std::to_string(i));
         if (!inOpen(s, kAnchor)) fail("OPEN_i is not a subset of OPEN_0");
-        if (!admits(key(s, i), key(s, kAnchor).f)) fail("state in OPEN_i fails key_i <= w2 * key_0");
+        if (!admits(key(s, i), key(s, kAnchor).f))
+          fail("state in OPEN_i fails key_i <= w2 * key_0");
       }
     });
     // Every state marked as a member has exactly one entry with its current key.

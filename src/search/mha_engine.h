@@ -22,10 +22,10 @@ struct MhaEngineOptions {
   double dw1 = 0.5, dw2 = 0.5;  // decrements per iteration
   WeightSchedule weight_schedule = WeightSchedule::kDecrement;
   double certified_ratio = 0.5, certified_split = 1.0, final_gap = 0.002;
-  bool publish_improvements = false;  // PlannerConfig::publish_within_iterations
+  bool publish_improvements = false;   // PlannerConfig::publish_within_iterations
   std::uint64_t stall_expansions = 0;  // PlannerConfig::stall_expansions, stall_w1
   double stall_w1 = 5.0;
-  bool anytime = true;          // false: one ImprovePath (MHA*, weighted A*, A*)
+  bool anytime = true;  // false: one ImprovePath (MHA*, weighted A*, A*)
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
   bool check_invariants = false;
@@ -47,8 +47,10 @@ class MhaEngine : public SearchBase {
  private:
   /// The anchor's queue and heuristic (h_0, admissible and consistent): OPEN_0 of Algorithm 1.
   static constexpr std::size_t kAnchor = 0;
-  static constexpr std::uint32_t kGenerated = StateRecords::kGenerated, kClosedAnch = StateRecords::kClosedAnch,
-                                 kClosedInad = StateRecords::kClosedInad, kIncons = StateRecords::kIncons;
+  static constexpr std::uint32_t kGenerated = StateRecords::kGenerated,
+                                 kClosedAnch = StateRecords::kClosedAnch,
+                                 kClosedInad = StateRecords::kClosedInad,
+                                 kIncons = StateRecords::kIncons;
 
   bool improvePath();  // false if a limit stopped it
   void expand(StateId s, std::size_t queue);
@@ -140,23 +142,23 @@ class MhaEngine : public SearchBase {
   void resetArrays(std::size_t used) override;
 
   MhaEngineOptions opt_;
-  std::size_t nh_ = 1;            // heuristics in use, anchor included
+  std::size_t nh_ = 1;  // heuristics in use, anchor included
   double w1_ = 1.0, w2_ = 1.0;
   bool small_keys_ = false;  // the problem allows bucket queues
   int iteration_ = 0;
   std::size_t next_queue_ = 1;  // the inadmissible queue the next step tries (1..N)
-  bool dts_ = false;        // opt_.schedule == kDts and there are inadmissible queues
-  bool progress_ = false;   // DTS: the current expansion lowered its queue's smallest h
+  bool dts_ = false;            // opt_.schedule == kDts and there are inadmissible queues
+  bool progress_ = false;       // DTS: the current expansion lowered its queue's smallest h
   DtsSchedule schedule_;
   StateId goal_ = kNoState;
-  bool goal_improved_ = false;  // g(goal) fell since the last report
+  bool goal_improved_ = false;          // g(goal) fell since the last report
   bool incons_this_iteration_ = false;  // a state entered INCONS in this ImprovePath
-  Cost known_lb_ = 0;           // the best proven lower bound on the optimal cost so far
-  double known_nominal_ = 0.0;  // the last finished iteration's bound w1 w2 (inf before)
+  Cost known_lb_ = 0;                   // the best proven lower bound on the optimal cost so far
+  double known_nominal_ = 0.0;          // the last finished iteration's bound w1 w2 (inf before)
 
   StateRecords records_;
-  ReallocVector<StateId> members_;    // OPEN_0 u INCONS, from collectOpen0AndIncons()
-  std::vector<OpenQueue> open_;       // open_[kAnchor] is the anchor queue
+  ReallocVector<StateId> members_;  // OPEN_0 u INCONS, from collectOpen0AndIncons()
+  std::vector<OpenQueue> open_;     // open_[kAnchor] is the anchor queue
   ExpansionObserver observer_;
 };
 

@@ -12,8 +12,8 @@ struct NamedAlgorithm {
   const char* name;
 };
 constexpr NamedAlgorithm kAlgorithms[] = {
-    {Algorithm::kAmhaStar, "amha"},      {Algorithm::kMhaStar, "mha"},
-    {Algorithm::kAraStar, "ara"},        {Algorithm::kAnaStar, "ana"},
+    {Algorithm::kAmhaStar, "amha"},        {Algorithm::kMhaStar, "mha"},
+    {Algorithm::kAraStar, "ara"},          {Algorithm::kAnaStar, "ana"},
     {Algorithm::kWeightedAStar, "wastar"}, {Algorithm::kAStar, "astar"},
 };
 }  // namespace
@@ -35,9 +35,7 @@ bool parseAlgorithm(const std::string& name, Algorithm* out) {
   return false;
 }
 
-const char* scheduleName(QueueSchedule s) {
-  return s == QueueSchedule::kDts ? "dts" : "rr";
-}
+const char* scheduleName(QueueSchedule s) { return s == QueueSchedule::kDts ? "dts" : "rr"; }
 
 bool parseSchedule(const std::string& name, QueueSchedule* out) {
   if (name == "rr") {
@@ -67,13 +65,20 @@ bool parseWeightSchedule(const std::string& name, WeightSchedule* out) {
 
 const char* statusName(SearchStatus s) {
   switch (s) {
-    case SearchStatus::kProvenOptimal: return "proven_optimal";
-    case SearchStatus::kBoundReached: return "bound_reached";
-    case SearchStatus::kTimeLimit: return "time_limit";
-    case SearchStatus::kExpansionLimit: return "expansion_limit";
-    case SearchStatus::kMemoryLimit: return "memory_limit";
-    case SearchStatus::kCancelled: return "cancelled";
-    case SearchStatus::kNoSolution: return "no_solution";
+    case SearchStatus::kProvenOptimal:
+      return "proven_optimal";
+    case SearchStatus::kBoundReached:
+      return "bound_reached";
+    case SearchStatus::kTimeLimit:
+      return "time_limit";
+    case SearchStatus::kExpansionLimit:
+      return "expansion_limit";
+    case SearchStatus::kMemoryLimit:
+      return "memory_limit";
+    case SearchStatus::kCancelled:
+      return "cancelled";
+    case SearchStatus::kNoSolution:
+      return "no_solution";
   }
   return "unknown";
 }
@@ -84,17 +89,29 @@ PlannerConfig defaultConfig(Algorithm algorithm) {
   switch (algorithm) {
     case Algorithm::kAmhaStar:  // the paper's initial bound w1*w2 = 25, then 20.25, 16, ... 1
     case Algorithm::kMhaStar:
-      c.w1 = 5.0; c.w2 = 5.0; c.dw1 = 0.5; c.dw2 = 0.5;
+      c.w1 = 5.0;
+      c.w2 = 5.0;
+      c.dw1 = 0.5;
+      c.dw2 = 0.5;
       break;
     case Algorithm::kAraStar:  // epsilon 25, 22, ..., 4, 1: as many iterations as A-MHA*'s
-      c.w1 = 25.0; c.w2 = 1.0; c.dw1 = 3.0; c.dw2 = 0.0;
+      c.w1 = 25.0;
+      c.w2 = 1.0;
+      c.dw1 = 3.0;
+      c.dw2 = 0.0;
       break;
     case Algorithm::kWeightedAStar:
-      c.w1 = 5.0; c.w2 = 1.0; c.dw1 = 0.0; c.dw2 = 0.0;
+      c.w1 = 5.0;
+      c.w2 = 1.0;
+      c.dw1 = 0.0;
+      c.dw2 = 0.0;
       break;
     case Algorithm::kAnaStar:
     case Algorithm::kAStar:
-      c.w1 = 1.0; c.w2 = 1.0; c.dw1 = 0.0; c.dw2 = 0.0;
+      c.w1 = 1.0;
+      c.w2 = 1.0;
+      c.dw1 = 0.0;
+      c.dw2 = 0.0;
       break;
   }
   return c;

@@ -42,8 +42,8 @@ std::string num(double v) {
 // NaN fails both comparisons, so it is refused with the infinities.
 void checkRange(double v, double lo, const char* name) {
   if (!(v >= lo && v <= kMaxWeight)) {
-    throw std::invalid_argument(std::string(name) + " must be a finite number in [" + num(lo) + ", " + num(kMaxWeight) +
-                                "], got " + num(v));
+    throw std::invalid_argument(std::string(name) + " must be a finite number in [" + num(lo) +
+                                ", " + num(kMaxWeight) + "], got " + num(v));
   }
 }
 void checkWeight(double w, const char* name) { checkRange(w, 1.0, name); }
@@ -70,13 +70,16 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
   const bool certified = c.weight_schedule == WeightSchedule::kCertified;
   if (certified) {
     if (!(c.certified_ratio >= 0.0 && c.certified_ratio < 1.0)) {
-      throw std::invalid_argument("certified_ratio must be in [0, 1), got " + num(c.certified_ratio));
+      throw std::invalid_argument("certified_ratio must be in [0, 1), got " +
+                                  num(c.certified_ratio));
     }
     if (!(c.certified_split >= 0.0 && c.certified_split <= 1.0)) {
-      throw std::invalid_argument("certified_split must be in [0, 1], got " + num(c.certified_split));
+      throw std::invalid_argument("certified_split must be in [0, 1], got " +
+                                  num(c.certified_split));
     }
     if (!(c.final_gap >= 0.0 && c.final_gap < 1e6)) {
-      throw std::invalid_argument("final_gap must be a number in [0, 1e6), got " + num(c.final_gap));
+      throw std::invalid_argument("final_gap must be a number in [0, 1e6), got " +
+                                  num(c.final_gap));
     }
   }
   o.anytime = false;
@@ -93,14 +96,18 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
         throw std::invalid_argument(
             "A-MHA* needs dw1 > 0 (if w1 > 1) and dw2 > 0 (if w2 > 1) to reach bound 1");
       }
-      o.w1 = c.w1; o.w2 = c.w2; o.dw1 = c.dw1; o.dw2 = c.dw2;
+      o.w1 = c.w1;
+      o.w2 = c.w2;
+      o.dw1 = c.dw1;
+      o.dw2 = c.dw2;
       o.anytime = true;
       o.max_inadmissible = c.max_inadmissible;
       break;
     case Algorithm::kMhaStar:
       checkWeight(c.w1, "w1");
       checkWeight(c.w2, "w2");
-      o.w1 = c.w1; o.w2 = c.w2;
+      o.w1 = c.w1;
+      o.w2 = c.w2;
       o.max_inadmissible = c.max_inadmissible;
       break;
     case Algorithm::kAraStar:
@@ -109,7 +116,8 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
       if (!certified && c.w1 > 1.0 && c.dw1 <= 0.0) {
         throw std::invalid_argument("ARA* needs an epsilon decrement dw1 > 0 to reach 1");
       }
-      o.w1 = c.w1; o.dw1 = c.dw1;
+      o.w1 = c.w1;
+      o.dw1 = c.dw1;
       o.anytime = true;
       break;
     case Algorithm::kWeightedAStar:

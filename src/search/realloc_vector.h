@@ -116,8 +116,8 @@ class ReallocVector {
   }
 
   void reallocateSmall(std::size_t bytes) {
-    const std::size_t old_offset = static_cast<std::size_t>(reinterpret_cast<char*>(data_) -
-                                                            static_cast<char*>(raw_));
+    const std::size_t old_offset =
+        static_cast<std::size_t>(reinterpret_cast<char*>(data_) - static_cast<char*>(raw_));
     void* raw = std::realloc(raw_, bytes + kAlign);
     if (raw == nullptr) throw std::bad_alloc();
     const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(raw);

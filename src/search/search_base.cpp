@@ -43,24 +43,23 @@ bool SearchBase::grow(StateId id) {
   return true;
 }
 
-std::size_t SearchBase::memoryBytes() const {
-  return problem_->memoryBytes() + engineBytes();
-}
+std::size_t SearchBase::memoryBytes() const { return problem_->memoryBytes() + engineBytes(); }
 
 bool SearchBase::slowLimitCheck() {
   if (stop_condition_.cancelled()) return stopWith(SearchStatus::kCancelled);
   // A thread's CPU clock is a system call (~0.3 us, 3 % of the tiles' expansions if read
   // every 64): read it every 1024 expansions; the wall clock is cheap.
   const bool read_clock = limits_.clock == StopClock::kWall || (expansions_ & 1023u) == 0;
-  if (read_clock && stop_condition_.reason() == StopReason::kDeadline) return stopWith(SearchStatus::kTimeLimit);
+  if (read_clock && stop_condition_.reason() == StopReason::kDeadline)
+    return stopWith(SearchStatus::kTimeLimit);
   if ((expansions_ & 4095u) == 0 && memoryBytes() > limits_.max_memory_bytes) {
     return stopWith(SearchStatus::kMemoryLimit);
   }
   return false;
 }
 
-bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, double w1,
-                        double w2, bool only_if_cheaper) {
+bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, double w1, double w2,
+                        bool only_if_cheaper) {
   SearchProblem& p = *problem_;
   Solution sol;
   // Parent chains are acyclic (g strictly decreases towards the start since edge costs are
@@ -83,7 +82,8 @@ bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
     cost += best;
   }
   sol.cost = cost;
-  if (only_if_cheaper && !result_.solutions.empty() && result_.solutions.back().cost <= cost) return false;
+  if (only_if_cheaper && !result_.solutions.empty() && result_.solutions.back().cost <= cost)
+    return false;
   // Keep the best path: a new parent chain is bounded by the new, lower g(goal), but can still
   // cost more than the previous chain's true sum (which may have been below its g(goal)).
   // Re-publishing the cheaper previous path keeps costs non-increasing; the new bounds hold for
@@ -100,8 +100,8 @@ bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
   if (lower_bound >= cost) {
     certified = 1.0;
   } else if (lower_bound > 0 && lower_bound < kInfiniteCost) {
-    certified = std::min(nominal_bound,
-                         static_cast<double>(cost) / static_cast<double>(lower_bound));
+    certified =
+        std::min(nominal_bound, static_cast<double>(cost) / static_cast<double>(lower_bound));
   }
   sol.certified_bound = std::max(1.0, certified);
   sol.elapsed_s = elapsed();

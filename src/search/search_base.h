@@ -1,5 +1,6 @@
-// State shared by the engines: growth of the per-state data with the dense ids, the limit checks (time, expansions, states, memory, cancel), and turning a parent chain into a
-// reported Solution with its certified bound.
+// State shared by the engines: growth of the per-state data with the dense ids, the limit checks
+// (time, expansions, states, memory, cancel), and turning a parent chain into a reported Solution
+// with its certified bound.
 #pragma once
 
 #include <chrono>

@@ -54,7 +54,9 @@ class StateRecords {
   }
   /// Sets records [from, to) to all zero: g = infinity, no parent, no flags, in no queue.
   void zero(std::size_t from, std::size_t to) {
-    if (to > from) std::memset(rec(static_cast<StateId>(from)), 0, (to - from) * stride_ * sizeof(std::uint32_t));
+    if (to > from)
+      std::memset(rec(static_cast<StateId>(from)), 0,
+                  (to - from) * stride_ * sizeof(std::uint32_t));
   }
   std::size_t bytes() const { return rec_.capacity() * sizeof(std::uint32_t); }
 
@@ -108,9 +110,15 @@ class StateRecords {
   static constexpr std::size_t kFlagBits = 4, kFlagMembers = 32 - kFlagBits;
 
   std::uint32_t* rec(StateId s) { return rec_.data() + static_cast<std::size_t>(s) * stride_; }
-  const std::uint32_t* rec(StateId s) const { return rec_.data() + static_cast<std::size_t>(s) * stride_; }
-  std::uint32_t& memberWord(StateId s, std::size_t i) { return rec(s)[member_word_ + (i + member_shift_) / 32]; }
-  std::uint32_t memberWord(StateId s, std::size_t i) const { return rec(s)[member_word_ + (i + member_shift_) / 32]; }
+  const std::uint32_t* rec(StateId s) const {
+    return rec_.data() + static_cast<std::size_t>(s) * stride_;
+  }
+  std::uint32_t& memberWord(StateId s, std::size_t i) {
+    return rec(s)[member_word_ + (i + member_shift_) / 32];
+  }
+  std::uint32_t memberWord(StateId s, std::size_t i) const {
+    return rec(s)[member_word_ + (i + member_shift_) / 32];
+  }
   std::uint32_t memberBit(std::size_t i) const { return 1u << ((i + member_shift_) % 32); }
 
   std::size_t nh_ = 0;            // heuristics in use, anchor included (0: not laid out yet)

@@ -22,14 +22,22 @@ int manhattanDistance(const Board& b) {
 
 int lineConflictRemovals(const std::uint8_t* tiles, int n, bool row, int index) {
   switch (n) {
-    case 3: return detail::lineRemovals<3>(tiles, row, index);
-    case 4: return detail::lineRemovals<4>(tiles, row, index);
-    case 5: return detail::lineRemovals<5>(tiles, row, index);
-    case 6: return detail::lineRemovals<6>(tiles, row, index);
-    case 7: return detail::lineRemovals<7>(tiles, row, index);
-    case 8: return detail::lineRemovals<8>(tiles, row, index);
-    case 9: return detail::lineRemovals<9>(tiles, row, index);
-    default: return 0;
+    case 3:
+      return detail::lineRemovals<3>(tiles, row, index);
+    case 4:
+      return detail::lineRemovals<4>(tiles, row, index);
+    case 5:
+      return detail::lineRemovals<5>(tiles, row, index);
+    case 6:
+      return detail::lineRemovals<6>(tiles, row, index);
+    case 7:
+      return detail::lineRemovals<7>(tiles, row, index);
+    case 8:
+      return detail::lineRemovals<8>(tiles, row, index);
+    case 9:
+      return detail::lineRemovals<9>(tiles, row, index);
+    default:
+      return 0;
   }
 }
 
@@ -66,7 +74,6 @@ std::vector<TermWeights> randomTermWeights(std::size_t count, std::uint32_t seed
   }
   return out;
 }
-
 
 }  // namespace tiles
 }  // namespace amha

@@ -59,14 +59,17 @@ std::vector<Instance> parseInstances(const std::string& text, const std::string&
     std::vector<std::string> tok;
     for (std::string t; ls >> t;) tok.push_back(t);
     if (tok.empty() || tok[0][0] == '#') continue;
-    if (tok.size() < 3) fail(name, line_no, "expected `id optimal md tiles...`, got too few fields");
+    if (tok.size() < 3)
+      fail(name, line_no, "expected `id optimal md tiles...`, got too few fields");
     Instance inst;
     inst.id = tok[0];
     long optimal = 0, md = 0;
     // Bounded so that it fits the int it is stored in (the longest optimal 9x9 solution is far
     // below the bound).
     if (!parseInt(tok[1], &optimal) || optimal < -1 || optimal > kMaxOptimalLength) {
-      fail(name, line_no, "optimal length '" + tok[1] + "' is not an integer in -1.." + std::to_string(kMaxOptimalLength));
+      fail(name, line_no,
+           "optimal length '" + tok[1] + "' is not an integer in -1.." +
+               std::to_string(kMaxOptimalLength));
     }
     if (!parseInt(tok[2], &md) || md < -1) {
       fail(name, line_no, "md '" + tok[2] + "' is not an integer >= -1");
@@ -96,30 +99,34 @@ std::vector<Instance> parseInstances(const std::string& text, const std::string&
     for (int k = 0; k < n_tiles; ++k) {
       long t = 0;
       if (!parseInt(tok[3 + k], &t)) {
-        fail(name, line_no, "tile " + std::to_string(k) + " '" + tok[3 + k] + "' is not an integer");
+        fail(name, line_no,
+             "tile " + std::to_string(k) + " '" + tok[3 + k] + "' is not an integer");
       }
       if (t < 0 || t >= n_tiles) {
-        fail(name, line_no, "tile " + std::to_string(t) + " at position " + std::to_string(k) +
-                                " is out of range 0.." + std::to_string(n_tiles - 1));
+        fail(name, line_no,
+             "tile " + std::to_string(t) + " at position " + std::to_string(k) +
+                 " is out of range 0.." + std::to_string(n_tiles - 1));
       }
       inst.start.tiles[k] = static_cast<std::uint8_t>(t);
     }
     const std::string err = boardError(inst.start);
     if (!err.empty()) fail(name, line_no, err);
     if (md >= 0 && md != manhattanDistance(inst.start)) {
-      fail(name, line_no, "md column says " + std::to_string(md) +
-                              " but the tiles' Manhattan distance is " +
-                              std::to_string(manhattanDistance(inst.start)) +
-                              " (a transcription error? use -1 to skip the check)");
+      fail(name, line_no,
+           "md column says " + std::to_string(md) + " but the tiles' Manhattan distance is " +
+               std::to_string(manhattanDistance(inst.start)) +
+               " (a transcription error? use -1 to skip the check)");
     }
     if (!isSolvable(inst.start)) {
-      fail(name, line_no, "instance '" + inst.id +
-                              "' is unsolvable (wrong permutation parity for the goal 0 1 2 ...)");
+      fail(name, line_no,
+           "instance '" + inst.id +
+               "' is unsolvable (wrong permutation parity for the goal 0 1 2 ...)");
     }
     if (optimal >= 0) {
       if (optimal < manhattanDistance(inst.start)) {
-        fail(name, line_no, "optimal length " + std::to_string(optimal) +
-                                " is below the Manhattan distance, which is a lower bound");
+        fail(name, line_no,
+             "optimal length " + std::to_string(optimal) +
+                 " is below the Manhattan distance, which is a lower bound");
       }
       inst.optimal = static_cast<int>(optimal);
     }
@@ -203,7 +210,8 @@ std::vector<Instance> generateInstances(int size, int count, std::uint64_t seed,
                 std::to_string(seed) + "-" + std::to_string(i);
       inst.start = randomWalkBoard(size, walk_length, seed, static_cast<std::uint64_t>(i));
     } else {
-      inst.id = "rand" + std::to_string(size) + "-s" + std::to_string(seed) + "-" + std::to_string(i);
+      inst.id =
+          "rand" + std::to_string(size) + "-s" + std::to_string(seed) + "-" + std::to_string(i);
       inst.start = randomSolvableBoard(size, seed, static_cast<std::uint64_t>(i));
     }
     out.push_back(std::move(inst));

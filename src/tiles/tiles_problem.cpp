@@ -244,7 +244,8 @@ class TilesSpace final : public TilesProblem {
 
   // MD, LC and MT of the child reached by moving tile t from p into the blank at b, from the
   // parent's values and packed board.
-  std::uint32_t childInfo(const std::uint64_t* parent, std::uint32_t info, int b, int p, int t) const {
+  std::uint32_t childInfo(const std::uint64_t* parent, std::uint32_t info, int b, int p,
+                          int t) const {
     const int md = infoMd(info) + dist_[t * n2_ + b] - dist_[t * n2_ + p];
     const int mt = infoMt(info) + (t != b) - (t != p);
     int lc_half = infoLcHalf(info);
@@ -257,7 +258,7 @@ class TilesSpace final : public TilesProblem {
     const int from_line = horizontal ? p % N : p / N;
     const int to_line = horizontal ? b % N : b / N;
     if (goal_line == from_line || goal_line == to_line) {
-      const bool row = !horizontal;  // the changed line is a row for vertical moves
+      const bool row = !horizontal;               // the changed line is a row for vertical moves
       const int at = horizontal ? p / N : p % N;  // offset of t (or the blank) in that line
       auto get = [&](int k) {
         return static_cast<int>(getField(parent, row ? goal_line * N + k : k * N + goal_line));
@@ -302,7 +303,8 @@ class TilesSpace final : public TilesProblem {
     for (;; slot = (slot + 1) & mask_) {
       const std::uint32_t v = slots_[slot];
       if (v == kEmpty) break;
-      if ((v & ~id_mask_) == tag && std::memcmp(words(v & id_mask_), w, sizeof(std::uint64_t) * W) == 0) {
+      if ((v & ~id_mask_) == tag &&
+          std::memcmp(words(v & id_mask_), w, sizeof(std::uint64_t) * W) == 0) {
         *slot_out = slot;
         return v & id_mask_;
       }
@@ -381,14 +383,15 @@ class TilesSpace final : public TilesProblem {
   std::size_t count_ = 0;
   std::vector<Chunk> chunks_;
   std::vector<std::uint32_t> slots_;
-  std::size_t retry_growth_at_ = 0;      // no table growth before this many states
-  std::function<bool()> interrupted_;    // the running search's limit check, if any
+  std::size_t retry_growth_at_ = 0;    // no table growth before this many states
+  std::function<bool()> interrupted_;  // the running search's limit check, if any
   std::size_t mask_ = 0;
   std::uint32_t id_mask_ = 0;
   int shift_ = 0;
   std::uint8_t neighbours_[N * N][4] = {};
   std::uint8_t num_neighbours_[N * N] = {};
-  std::uint8_t back_[N * N][4] = {};  // back_[b][k]: index of b among neighbours_[neighbours_[b][k]]
+  std::uint8_t back_[N * N][4] =
+      {};  // back_[b][k]: index of b among neighbours_[neighbours_[b][k]]
   std::uint8_t dist_[N * N * N * N] = {};  // dist_[t * N * N + p]: Manhattan distance
 };
 
@@ -407,13 +410,20 @@ std::unique_ptr<TilesProblem> TilesProblem::create(const Board& start,
     }
   }
   switch (start.size) {
-    case 3: return std::make_unique<TilesSpace<3>>(start, std::move(weights));
-    case 4: return std::make_unique<TilesSpace<4>>(start, std::move(weights));
-    case 5: return std::make_unique<TilesSpace<5>>(start, std::move(weights));
-    case 6: return std::make_unique<TilesSpace<6>>(start, std::move(weights));
-    case 7: return std::make_unique<TilesSpace<7>>(start, std::move(weights));
-    case 8: return std::make_unique<TilesSpace<8>>(start, std::move(weights));
-    default: return std::make_unique<TilesSpace<9>>(start, std::move(weights));
+    case 3:
+      return std::make_unique<TilesSpace<3>>(start, std::move(weights));
+    case 4:
+      return std::make_unique<TilesSpace<4>>(start, std::move(weights));
+    case 5:
+      return std::make_unique<TilesSpace<5>>(start, std::move(weights));
+    case 6:
+      return std::make_unique<TilesSpace<6>>(start, std::move(weights));
+    case 7:
+      return std::make_unique<TilesSpace<7>>(start, std::move(weights));
+    case 8:
+      return std::make_unique<TilesSpace<8>>(start, std::move(weights));
+    default:
+      return std::make_unique<TilesSpace<9>>(start, std::move(weights));
   }
 }
 

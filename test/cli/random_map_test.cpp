@@ -25,10 +25,13 @@ RandomMapOptions small(unsigned seed) {
   return o;
 }
 
-bool same(const cv::Mat& a, const cv::Mat& b) { return a.size() == b.size() && cv::countNonZero(a != b) == 0; }
+bool same(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && cv::countNonZero(a != b) == 0;
+}
 
 TEST(RandomMap, SeededDenseAndOneFreeRegion) {
-  const RandomMap a = randomObstacleMap(small(1)), b = randomObstacleMap(small(1)), c = randomObstacleMap(small(2));
+  const RandomMap a = randomObstacleMap(small(1)), b = randomObstacleMap(small(1)),
+                  c = randomObstacleMap(small(2));
   EXPECT_TRUE(same(a.occupied, b.occupied));
   EXPECT_FALSE(same(a.occupied, c.occupied));
   for (const RandomMap* m : {&a, &c}) {
@@ -37,7 +40,8 @@ TEST(RandomMap, SeededDenseAndOneFreeRegion) {
     EXPECT_LE(m->occupied_fraction, 0.19);
     EXPECT_GT(m->obstacles, 20);
     cv::Mat labels;
-    EXPECT_EQ(cv::connectedComponents(m->occupied == 0, labels, 4), 2);  // background + one free region
+    EXPECT_EQ(cv::connectedComponents(m->occupied == 0, labels, 4),
+              2);  // background + one free region
   }
   RandomMapOptions bad = small(1);
   bad.obstacle_fraction = NAN;
@@ -87,11 +91,13 @@ TEST(RandomQueries, ValidConnectedFarApartAndSeeded) {
     EXPECT_TRUE(graph.stateValid(sx, sy, sh));
     EXPECT_TRUE(graph.stateValid(gx, gy, gh));
     EXPECT_GE(std::hypot(q.goal.x - q.start.x, q.goal.y - q.start.y), 8.0);
-    EXPECT_TRUE(lattice::test::floodFill(*map, sx, sy)[gy * map->width + gx]) << "start and goal are not connected";
+    EXPECT_TRUE(lattice::test::floodFill(*map, sx, sy)[gy * map->width + gx])
+        << "start and goal are not connected";
     crossing += (sx < 200) != (gx < 200);
   }
   EXPECT_EQ(crossing, 0);  // the inscribed band splits the map in two
-  const std::vector<Query> again = randomQueries(graph, 15, 3, 8.0), other = randomQueries(graph, 15, 4, 8.0);
+  const std::vector<Query> again = randomQueries(graph, 15, 3, 8.0),
+                           other = randomQueries(graph, 15, 4, 8.0);
   for (std::size_t i = 0; i < qs.size(); ++i) {
     EXPECT_EQ(again[i].start.x, qs[i].start.x);
     EXPECT_EQ(again[i].goal.theta, qs[i].goal.theta);

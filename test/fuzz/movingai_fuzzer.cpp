@@ -27,7 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   } catch (const LatticeError& e) {
     if (e.kind() != LatticeError::Kind::kMap) finding(std::string("wrong error kind: ") + e.what());
-    if (std::string(e.what()).rfind(path, 0) != 0) finding(std::string("error does not name the file: ") + e.what());
+    if (std::string(e.what()).rfind(path, 0) != 0)
+      finding(std::string("error does not name the file: ") + e.what());
   }
   return 0;
 }

@@ -26,12 +26,15 @@ void checkSet(const PrimitiveSet& set) {
   if (set.primitives.empty()) finding("primitive count");
   for (std::size_t i = 0; i < set.primitives.size(); ++i) {
     const MotionPrimitive& p = set.primitives[i];
-    if (i > 0 && p.start_heading < set.primitives[i - 1].start_heading) finding("not grouped by heading");
-    if (p.start_heading < 0 || p.start_heading >= n || p.end_heading < 0 || p.end_heading >= n) finding("heading index");
+    if (i > 0 && p.start_heading < set.primitives[i - 1].start_heading)
+      finding("not grouped by heading");
+    if (p.start_heading < 0 || p.start_heading >= n || p.end_heading < 0 || p.end_heading >= n)
+      finding("heading index");
     if (!(p.cost_multiplier > 0.0)) finding("cost multiplier");
     if (p.poses.empty()) finding("no poses");
     for (const Pose2D& q : p.poses) {
-      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.theta)) finding("pose not finite");
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.theta))
+        finding("pose not finite");
     }
   }
   // Every heading has primitives (files have the same number for each; exact copies, which

@@ -21,24 +21,31 @@ namespace {
 void checkSet(const PrimitiveSet& set) {
   const int n = set.num_headings;
   if (n < 1 || n > 1024) finding("num_headings out of range");
-  if (!(set.resolution >= kMinResolution && set.resolution <= kMaxResolution)) finding("resolution out of range");
+  if (!(set.resolution >= kMinResolution && set.resolution <= kMaxResolution))
+    finding("resolution out of range");
   if (static_cast<int>(set.heading_angles.size()) != n) finding("heading_angles size");
   for (int h = 0; h < n; ++h) {
     const double a = set.heading_angles[h];
-    if (!(a >= 0.0 && a < 2.0 * M_PI) || (h > 0 && !(a > set.heading_angles[h - 1]))) finding("heading angles");
+    if (!(a >= 0.0 && a < 2.0 * M_PI) || (h > 0 && !(a > set.heading_angles[h - 1])))
+      finding("heading angles");
     const auto r = set.range(h);
     if (r.first == r.second) finding("a heading without primitives");
   }
   for (std::size_t i = 0; i < set.primitives.size(); ++i) {
     const MotionPrimitive& p = set.primitives[i];
-    if (i > 0 && p.start_heading < set.primitives[i - 1].start_heading) finding("not grouped by heading");
-    if (p.start_heading < 0 || p.start_heading >= n || p.end_heading < 0 || p.end_heading >= n) finding("heading index");
-    if (p.poses.empty() || p.poses.front().x != 0.0 || p.poses.front().y != 0.0) finding("the first pose is not the start");
+    if (i > 0 && p.start_heading < set.primitives[i - 1].start_heading)
+      finding("not grouped by heading");
+    if (p.start_heading < 0 || p.start_heading >= n || p.end_heading < 0 || p.end_heading >= n)
+      finding("heading index");
+    if (p.poses.empty() || p.poses.front().x != 0.0 || p.poses.front().y != 0.0)
+      finding("the first pose is not the start");
     for (const Pose2D& q : p.poses) {
-      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.theta)) finding("pose not finite");
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.theta))
+        finding("pose not finite");
     }
     const Pose2D& last = p.poses.back();
-    if (std::fabs(last.x / set.resolution - p.end_dx) > 0.011 || std::fabs(last.y / set.resolution - p.end_dy) > 0.011) {
+    if (std::fabs(last.x / set.resolution - p.end_dx) > 0.011 ||
+        std::fabs(last.y / set.resolution - p.end_dy) > 0.011) {
       finding("the last pose is not at the end cell");
     }
   }

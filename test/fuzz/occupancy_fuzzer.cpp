@@ -18,9 +18,9 @@
 
 #include "../lattice/path_validator.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "fuzz_support.h"
 
@@ -65,9 +65,16 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   // limits, never a hang, a crash or gigabytes.
   if (in.u8() == 0xA5) {
     switch (in.u8() % 4) {
-      case 0: c.robot.footprint.clear(); c.robot.radius = in.f64(); break;
-      case 1: c.motion.turning_radius = in.f64(); break;
-      case 2: c.heuristics.coarse_block = in.i32(); break;
+      case 0:
+        c.robot.footprint.clear();
+        c.robot.radius = in.f64();
+        break;
+      case 1:
+        c.motion.turning_radius = in.f64();
+        break;
+      case 2:
+        c.heuristics.coarse_block = in.i32();
+        break;
       default: {
         const double k = std::ldexp(1.0, in.u8() % 48);
         c.robot.radius *= k;
@@ -91,8 +98,9 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   const int n = g.numHeadings();
   const LatticeState s{in.u8() % map->width, in.u8() % map->height, in.u8() % n};
   const LatticeState t{in.u8() % map->width, in.u8() % map->height, in.u8() % n};
-  const Algorithm algorithms[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
-                                  Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar};
+  const Algorithm algorithms[] = {Algorithm::kAmhaStar,      Algorithm::kMhaStar,
+                                  Algorithm::kAraStar,       Algorithm::kAnaStar,
+                                  Algorithm::kWeightedAStar, Algorithm::kAStar};
   PlannerConfig pc = defaultConfig(algorithms[in.u8() % 6]);
   pc.check_invariants = true;
   SearchLimits limits;
@@ -103,7 +111,8 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   const Pose2D b{in.small(map->width * res), in.small(map->height * res), in.small(8.0)};
   {
     const PlanResult r = planner->plan(a, b, pc, limits);
-    if (r.error != QueryError::kNone && (r.message.empty() || !r.solutions.empty())) finding("query error without a message or with solutions");
+    if (r.error != QueryError::kNone && (r.message.empty() || !r.solutions.empty()))
+      finding("query error without a message or with solutions");
   }
   // The same with a goal tolerance: a bad one is refused; a substitute goal is collision-free,
   // within the tolerance, and where every path ends.
@@ -121,16 +130,19 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
       r.error = QueryError::kGoalNotFinite;
       r.message = "refused";
     }
-    if (r.error != QueryError::kNone && (r.message.empty() || !r.solutions.empty())) finding("tolerant query error without a message or with solutions");
+    if (r.error != QueryError::kNone && (r.message.empty() || !r.solutions.empty()))
+      finding("tolerant query error without a message or with solutions");
     if (r.goal_substituted) {
       int x = 0, y = 0, h = 0;
-      if (!r.planned_goal || !g.poseToState(*r.planned_goal, &x, &y, &h) || !g.stateValid(x, y, h)) {
+      if (!r.planned_goal || !g.poseToState(*r.planned_goal, &x, &y, &h) ||
+          !g.stateValid(x, y, h)) {
         finding("substitute goal missing or in collision");
       } else if (std::hypot(r.planned_goal->x - b.x, r.planned_goal->y - b.y) > tol + 1e-9) {
         finding("substitute goal beyond the tolerance");
       }
       for (const LatticeSolution& sol : r.solutions) {
-        if (std::hypot(sol.poses.back().x - r.planned_goal->x, sol.poses.back().y - r.planned_goal->y) > 1e-6 * res + 1e-9) {
+        if (std::hypot(sol.poses.back().x - r.planned_goal->x,
+                       sol.poses.back().y - r.planned_goal->y) > 1e-6 * res + 1e-9) {
           finding("a path does not end at the substitute goal");
         }
       }
@@ -139,17 +151,20 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
   if (!g.stateValid(s.x, s.y, s.heading) || !g.stateValid(t.x, t.y, t.heading)) return;
 
   // The same search as the facade's, on a problem whose state ids we can read back.
-  const bool inadmissible = algorithmSpecs(pc.algorithm).inadmissible_heuristics && c.heuristics.num_inadmissible > 0;
+  const bool inadmissible =
+      algorithmSpecs(pc.algorithm).inadmissible_heuristics && c.heuristics.num_inadmissible > 0;
   const bool backward = c.backward_search;
   const LatticeState from = backward ? t : s, to = backward ? s : t;
   // With the facade's kinematic table too: it changes the heuristics and the keys.
   KinematicLookup kinematic;
   if (g.kinematicTables()) {
     kinematic = g.kinematicTables()->lookup(
-        backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal, to.heading, nullptr);
+        backward ? KinematicTables::Direction::kFromStart : KinematicTables::Direction::kToGoal,
+        to.heading, nullptr);
   }
-  LatticeProblem problem(g, builder.compute(to.x, to.y, to.heading, inadmissible, 1, backward), from, to,
-                         inadmissible ? c.heuristics.num_inadmissible : 0, backward, false, kinematic);
+  LatticeProblem problem(g, builder.compute(to.x, to.y, to.heading, inadmissible, 1, backward),
+                         from, to, inadmissible ? c.heuristics.num_inadmissible : 0, backward,
+                         false, kinematic);
   const test::ValidatorModel model = test::modelFor(g);
   std::vector<Cost> costs;
   Cost previous = kInfiniteCost;
@@ -157,19 +172,25 @@ void planAndCheck(const std::shared_ptr<const GridMap>& map, fuzz::Bytes& in) {
     std::vector<LatticeState> states;
     for (StateId id : sol.path) states.push_back(problem.state(id));
     if (backward) std::reverse(states.begin(), states.end());
-    if (states.empty() || !(states.front() == s) || !(states.back() == t)) finding("solution does not join start and goal");
+    if (states.empty() || !(states.front() == s) || !(states.back() == t))
+      finding("solution does not join start and goal");
     const std::string err = test::validatePath(model, states, sol.cost);
-    if (!err.empty()) finding(std::string(algorithmName(pc.algorithm)) + " solution invalid: " + err);
+    if (!err.empty())
+      finding(std::string(algorithmName(pc.algorithm)) + " solution invalid: " + err);
     if (sol.cost > previous) finding("solution cost increased");
     previous = sol.cost;
-    if (!(sol.certified_bound >= 1.0) || sol.certified_bound > sol.nominal_bound * (1 + 1e-12)) finding("bounds out of order");
+    if (!(sol.certified_bound >= 1.0) || sol.certified_bound > sol.nominal_bound * (1 + 1e-12))
+      finding("bounds out of order");
     costs.push_back(sol.cost);
   });
-  if (r.status == SearchStatus::kNoSolution && r.hasSolution()) finding("no-solution status with a solution");
+  if (r.status == SearchStatus::kNoSolution && r.hasSolution())
+    finding("no-solution status with a solution");
 
-  const PlanResult f = planner->plan(g.stateToPose(s.x, s.y, s.heading), g.stateToPose(t.x, t.y, t.heading), pc, limits);
+  const PlanResult f = planner->plan(g.stateToPose(s.x, s.y, s.heading),
+                                     g.stateToPose(t.x, t.y, t.heading), pc, limits);
   if (f.error != QueryError::kNone) finding("facade refused a valid query: " + f.message);
-  if (f.search.status != r.status || f.solutions.size() != costs.size()) finding("facade and direct search differ");
+  if (f.search.status != r.status || f.solutions.size() != costs.size())
+    finding("facade and direct search differ");
   const Pose2D ps = g.stateToPose(s.x, s.y, s.heading), pt = g.stateToPose(t.x, t.y, t.heading);
   for (std::size_t k = 0; k < costs.size(); ++k) {
     const LatticeSolution& sol = f.solutions[k];
@@ -204,7 +225,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   conversion.unknown_is_free = in.u8() & 1;
   const std::size_t max_cells = in.u8() == 0 ? 100 : std::size_t{1} << 26;
   // The data: width x height values when that is small, sometimes a wrong length.
-  const bool plausible = width > 0 && height > 0 && static_cast<std::int64_t>(width) * height <= 4096;
+  const bool plausible =
+      width > 0 && height > 0 && static_cast<std::int64_t>(width) * height <= 4096;
   std::size_t data_size = plausible ? static_cast<std::size_t>(width) * height : in.u8();
   const std::uint8_t skew = in.u8();
   if (skew == 1) data_size += 1;
@@ -212,25 +234,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t pattern = in.n;
   const std::uint8_t* cells = in.p;
   std::vector<std::int8_t> values(data_size);
-  for (std::size_t i = 0; i < data_size; ++i) values[i] = pattern > 0 ? cellValue(cells[i % pattern]) : 0;
+  for (std::size_t i = 0; i < data_size; ++i)
+    values[i] = pattern > 0 ? cellValue(cells[i % pattern]) : 0;
   GridMap m;
   try {
-    m = gridMapFromOccupancy(width, height, resolution, ox, oy, oyaw, skew == 3 ? nullptr : values.data(),
-                             data_size, conversion, max_cells);
+    m = gridMapFromOccupancy(width, height, resolution, ox, oy, oyaw,
+                             skew == 3 ? nullptr : values.data(), data_size, conversion, max_cells);
   } catch (const LatticeError& e) {
     if (e.kind() != LatticeError::Kind::kMap || std::string(e.what()).empty()) finding("bad error");
     return 0;
   }
-  if (m.width != width || m.height != height || m.cost.size() != data_size || data_size != static_cast<std::size_t>(width) * height ||
-      data_size > max_cells || !(resolution > 0.0) || !std::isfinite(resolution)) {
+  if (m.width != width || m.height != height || m.cost.size() != data_size ||
+      data_size != static_cast<std::size_t>(width) * height || data_size > max_cells ||
+      !(resolution > 0.0) || !std::isfinite(resolution)) {
     finding("accepted a map that should have been refused");
   }
   for (std::size_t i = 0; i < data_size; ++i) {
-    if (m.cost[i] != occupancyToCost(values[i], conversion)) finding("cell cost differs from occupancyToCost");
+    if (m.cost[i] != occupancyToCost(values[i], conversion))
+      finding("cell cost differs from occupancyToCost");
   }
   if (m.width > 48 || m.height > 48 || pattern == 0) return 0;
   // Leave the tail of the input for the planner's parameters.
-  fuzz::Bytes rest{cells + std::min<std::size_t>(pattern, data_size), pattern - std::min<std::size_t>(pattern, data_size)};
+  fuzz::Bytes rest{cells + std::min<std::size_t>(pattern, data_size),
+                   pattern - std::min<std::size_t>(pattern, data_size)};
   planAndCheck(std::make_shared<const GridMap>(std::move(m)), rest);
   return 0;
 }

@@ -24,8 +24,10 @@ inline bool readOrRefuse(const std::string& text, const std::string& name, Primi
     *set = read(in, name, 0.0);
     return true;
   } catch (const lattice::LatticeError& e) {
-    if (e.kind() != lattice::LatticeError::Kind::kPrimitives) finding(std::string("wrong error kind: ") + e.what());
-    if (std::string(e.what()).rfind(name + ":", 0) != 0) finding(std::string("error does not name the file: ") + e.what());
+    if (e.kind() != lattice::LatticeError::Kind::kPrimitives)
+      finding(std::string("wrong error kind: ") + e.what());
+    if (std::string(e.what()).rfind(name + ":", 0) != 0)
+      finding(std::string("error does not name the file: ") + e.what());
     return false;
   }
 }
@@ -37,8 +39,9 @@ inline bool sameMotions(const lattice::PrimitiveSet& a, const lattice::Primitive
   for (std::size_t i = 0; i < a.primitives.size(); ++i) {
     const lattice::MotionPrimitive& p = a.primitives[i];
     const lattice::MotionPrimitive& q = b.primitives[i];
-    if ((ids && p.id != q.id) || p.start_heading != q.start_heading || p.end_dx != q.end_dx || p.end_dy != q.end_dy ||
-        p.end_heading != q.end_heading || p.poses.size() != q.poses.size()) {
+    if ((ids && p.id != q.id) || p.start_heading != q.start_heading || p.end_dx != q.end_dx ||
+        p.end_dy != q.end_dy || p.end_heading != q.end_heading ||
+        p.poses.size() != q.poses.size()) {
       return false;
     }
   }
@@ -49,13 +52,14 @@ using PrimitiveWriter = void (*)(std::ostream&, const lattice::PrimitiveSet&);
 
 /// Written out with `write` and read back with `read`, `set` has the same motions (or is
 /// refused: rounding to 6 decimals may move a pose out of its cell).
-inline void checkRoundTrip(const lattice::PrimitiveSet& set, PrimitiveWriter write, PrimitiveReader read,
-                           const std::string& name, bool ids) {
+inline void checkRoundTrip(const lattice::PrimitiveSet& set, PrimitiveWriter write,
+                           PrimitiveReader read, const std::string& name, bool ids) {
   std::ostringstream out;
   write(out, set);
   try {
     std::istringstream back(out.str());
-    if (!sameMotions(set, read(back, name, 0.0), ids)) finding("written as " + name + ", it reads back different");
+    if (!sameMotions(set, read(back, name, 0.0), ids))
+      finding("written as " + name + ", it reads back different");
   } catch (const lattice::LatticeError&) {
   }
 }
@@ -64,7 +68,8 @@ inline void checkRoundTrip(const lattice::PrimitiveSet& set, PrimitiveWriter wri
 /// with a wall, and plans a short query with A* and A-MHA*: every solution must start at the
 /// start and be a real path. A planner refused with a LatticeError (primitives that do not fit
 /// the robot or the map, headings without opposites for backward twins) is fine.
-inline void planOnSmallMap(const lattice::PrimitiveSet& set, const std::string& file, bool allow_reverse) {
+inline void planOnSmallMap(const lattice::PrimitiveSet& set, const std::string& file,
+                           bool allow_reverse) {
   using namespace amha::lattice;
   std::size_t poses = 0;
   for (const MotionPrimitive& p : set.primitives) poses += p.poses.size();

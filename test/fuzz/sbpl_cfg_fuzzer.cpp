@@ -16,11 +16,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const SbplEnvironment env = loadSbplEnvironment(path);
     const GridMap& m = env.map;
-    if (m.width <= 0 || m.height <= 0 || m.cost.size() != static_cast<std::size_t>(m.width) * m.height) {
+    if (m.width <= 0 || m.height <= 0 ||
+        m.cost.size() != static_cast<std::size_t>(m.width) * m.height) {
       finding("map with an inconsistent size");
     }
-    if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) finding("resolution not positive and finite");
-    if (env.num_theta_dirs < 1 || env.obsthresh < 1 || !(env.nominal_speed > 0.0) || env.time_to_turn_45 < 0.0) {
+    if (!(m.resolution > 0.0) || !std::isfinite(m.resolution))
+      finding("resolution not positive and finite");
+    if (env.num_theta_dirs < 1 || env.obsthresh < 1 || !(env.nominal_speed > 0.0) ||
+        env.time_to_turn_45 < 0.0) {
       finding("header value out of its documented range");
     }
     for (std::uint8_t c : m.cost) {
@@ -28,7 +31,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   } catch (const LatticeError& e) {
     if (e.kind() != LatticeError::Kind::kMap) finding(std::string("wrong error kind: ") + e.what());
-    if (std::string(e.what()).rfind(path, 0) != 0) finding(std::string("error does not name the file: ") + e.what());
+    if (std::string(e.what()).rfind(path, 0) != 0)
+      finding(std::string("error does not name the file: ") + e.what());
   }
   return 0;
 }

@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     instances = parseInstances(text, "fuzz.txt", expected);
   } catch (const InstanceError& e) {
-    if (std::string(e.what()).rfind("fuzz.txt", 0) != 0) finding(std::string("error does not name the input: ") + e.what());
+    if (std::string(e.what()).rfind("fuzz.txt", 0) != 0)
+      finding(std::string("error does not name the input: ") + e.what());
     return 0;
   }
   if (instances.empty()) finding("no instances and no error");
@@ -30,9 +31,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (inst.start.size != n) finding("boards of different sizes");
     if (!boardError(inst.start).empty()) finding("malformed board accepted");
     if (!isSolvable(inst.start)) finding("unsolvable board accepted");
-    if (inst.optimal && *inst.optimal < manhattanDistance(inst.start)) finding("optimal below the Manhattan distance");
+    if (inst.optimal && *inst.optimal < manhattanDistance(inst.start))
+      finding("optimal below the Manhattan distance");
   }
-  const std::vector<Instance> back = parseInstances(formatInstances(instances), "written.txt", expected);
+  const std::vector<Instance> back =
+      parseInstances(formatInstances(instances), "written.txt", expected);
   if (back.size() != instances.size()) finding("round trip changed the count");
   for (std::size_t i = 0; i < back.size(); ++i) {
     if (back[i].id != instances[i].id || back[i].start.tiles != instances[i].start.tiles ||

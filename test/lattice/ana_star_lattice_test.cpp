@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
-#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/detail/lattice_problem.h"
+#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "test_support.h"
 
@@ -36,7 +36,9 @@ class CountingProblem : public SearchProblem {
   std::size_t numHeuristics() const override { return p_.numHeuristics(); }
   void heuristics(StateId s, HeuristicValue* h, std::size_t n) override { p_.heuristics(s, h, n); }
   std::size_t memoryBytes() const override { return p_.memoryBytes(); }
-  void setInterruptCheck(std::function<bool()> check) override { p_.setInterruptCheck(std::move(check)); }
+  void setInterruptCheck(std::function<bool()> check) override {
+    p_.setInterruptCheck(std::move(check));
+  }
   std::uint64_t calls = 0;
   std::unordered_set<StateId> distinct;
 
@@ -49,7 +51,8 @@ struct FirstSolution {
   std::uint64_t expansions = 0, distinct = 0, astar_expansions = 0;
 };
 
-FirstSolution anaUntilFirstSolution(const std::shared_ptr<GridMap>& map, const LatticeConfig& c, Pose2D s, Pose2D t) {
+FirstSolution anaUntilFirstSolution(const std::shared_ptr<GridMap>& map, const LatticeConfig& c,
+                                    Pose2D s, Pose2D t) {
   LatticeGraph g(map, c);
   HeuristicGridBuilder b(g);
   LatticeState from, to;
@@ -80,10 +83,14 @@ FirstSolution anaUntilFirstSolution(const std::shared_ptr<GridMap>& map, const L
 }
 
 void report(const char* where, const FirstSolution& f) {
-  std::printf("[ ANA*     ] %s: first solution after %llu expansions of %llu distinct states (%.0f %% re-expansions); "
-              "A* proves the optimum in %llu\n", where, static_cast<unsigned long long>(f.expansions),
-              static_cast<unsigned long long>(f.distinct), 100.0 * (f.expansions - f.distinct) / f.expansions,
-              static_cast<unsigned long long>(f.astar_expansions));
+  std::printf(
+      "[ ANA*     ] %s: first solution after %llu expansions of %llu distinct states (%.0f %% "
+      "re-expansions); "
+      "A* proves the optimum in %llu\n",
+      where, static_cast<unsigned long long>(f.expansions),
+      static_cast<unsigned long long>(f.distinct),
+      100.0 * (f.expansions - f.distinct) / f.expansions,
+      static_cast<unsigned long long>(f.astar_expansions));
   // The paper's rule re-expands; if this stops holding, docs/search.md ("ANA*") is out of date.
   EXPECT_GT(f.expansions, f.distinct) << where;
 }
@@ -92,12 +99,14 @@ TEST(AnaStarOnTheLattice, ItsFirstSolutionReexpandsAsThePapersRuleDoes) {
   LatticeConfig c;
   c.robot.radius = 0.2;
   c.motion.turning_radius = 0.5;
-  auto willow = std::make_shared<GridMap>(
-      loadMapServerMap(std::string(AMHA_SOURCE_DIR) + "/maps/willow_garage/willow-2010-02-18-0.10.yaml"));
-  report("willow 17,55,0 -> 26,6,1.57", anaUntilFirstSolution(willow, c, {17, 55, 0}, {26, 6, 1.57}));
+  auto willow = std::make_shared<GridMap>(loadMapServerMap(
+      std::string(AMHA_SOURCE_DIR) + "/maps/willow_garage/willow-2010-02-18-0.10.yaml"));
+  report("willow 17,55,0 -> 26,6,1.57",
+         anaUntilFirstSolution(willow, c, {17, 55, 0}, {26, 6, 1.57}));
   AMHA_REQUIRE_SHARED_DATA(data);
   SbplEnvironment env;
-  auto cubicle = std::make_shared<GridMap>(loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
+  auto cubicle = std::make_shared<GridMap>(
+      loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
   c.robot.radius = 0.15;
   useSbplCostModel(env, c);
   report("cubicle (its start and end)", anaUntilFirstSolution(cubicle, c, env.start, env.goal));

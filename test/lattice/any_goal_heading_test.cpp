@@ -13,9 +13,9 @@
 
 #include "amha_planner/lattice/detail/coarse_lattice.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "path_validator.h"
 #include "test_support.h"
 
@@ -25,12 +25,14 @@ namespace {
 
 // Cheapest cost from s to each state, by Dijkstra over the graph's own edges.
 std::vector<Cost> costsFrom(const LatticeGraph& g, const LatticeState& s) {
-  return test::dijkstraFrom(g, s, [&](int x, int y, const LatticeAction& a) { return g.edgeCost(x, y, a); });
+  return test::dijkstraFrom(
+      g, s, [&](int x, int y, const LatticeAction& a) { return g.edgeCost(x, y, a); });
 }
 
 Cost cheapestToCell(const LatticeGraph& g, const std::vector<Cost>& d, int x, int y) {
   Cost best = kInfiniteCost;
-  for (int h = 0; h < g.numHeadings(); ++h) best = std::min(best, d[(static_cast<std::size_t>(y) * g.width() + x) * g.numHeadings() + h]);
+  for (int h = 0; h < g.numHeadings(); ++h)
+    best = std::min(best, d[(static_cast<std::size_t>(y) * g.width() + x) * g.numHeadings() + h]);
   return best;
 }
 
@@ -38,8 +40,8 @@ Cost cheapestToCell(const LatticeGraph& g, const std::vector<Cost>& d, int x, in
 // valid lattice path from s to some heading of the goal's cell, at most certified x optimal;
 // A*'s cost is the optimum.
 TEST(AnyGoalHeading, SolutionsAgainstAnExhaustiveDijkstraToEveryHeading) {
-  const Algorithm all[] = {Algorithm::kAStar, Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
-                           Algorithm::kAnaStar, Algorithm::kWeightedAStar};
+  const Algorithm all[] = {Algorithm::kAStar,   Algorithm::kAmhaStar, Algorithm::kMhaStar,
+                           Algorithm::kAraStar, Algorithm::kAnaStar,  Algorithm::kWeightedAStar};
   int queries = 0, cheaper_than_own_heading = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
     const auto map = test::randomMap(34, 34, 0.05, seed, 11, seed % 2 ? 150 : 0);
@@ -50,10 +52,12 @@ TEST(AnyGoalHeading, SolutionsAgainstAnExhaustiveDijkstraToEveryHeading) {
     for (int q = 0; q < 3; ++q) {
       LatticeState s{0, 0, 0}, t{0, 0, 0};
       do {
-        s = {static_cast<int>(rng() % 34), static_cast<int>(rng() % 34), static_cast<int>(rng() % g.numHeadings())};
+        s = {static_cast<int>(rng() % 34), static_cast<int>(rng() % 34),
+             static_cast<int>(rng() % g.numHeadings())};
       } while (!g.stateValid(s.x, s.y, s.heading));
       do {
-        t = {static_cast<int>(rng() % 34), static_cast<int>(rng() % 34), static_cast<int>(rng() % g.numHeadings())};
+        t = {static_cast<int>(rng() % 34), static_cast<int>(rng() % 34),
+             static_cast<int>(rng() % g.numHeadings())};
       } while (!g.stateValid(t.x, t.y, t.heading));
       const std::vector<Cost> d = costsFrom(g, s);
       const Cost optimal = cheapestToCell(g, d, t.x, t.y);
@@ -63,25 +67,28 @@ TEST(AnyGoalHeading, SolutionsAgainstAnExhaustiveDijkstraToEveryHeading) {
       for (const bool backward : {false, true}) {
         for (const Algorithm alg : all) {
           const LatticeState from = backward ? t : s, to = backward ? s : t;
-          auto grids = b.compute(to.x, to.y, backward ? to.heading : kAnyHeading, true, 1, backward);
+          auto grids =
+              b.compute(to.x, to.y, backward ? to.heading : kAnyHeading, true, 1, backward);
           LatticeProblem p(g, grids, from, to, 3, backward, true);
           SearchLimits limits;
           limits.time_limit_s = 10;
-          const SearchResult r = makePlanner(defaultConfig(alg))->search(p, limits, [&](const Solution& sol) {
-            std::vector<LatticeState> states;
-            for (StateId id : sol.path) {
-              if (id != p.virtualGoal()) states.push_back(p.state(id));
-            }
-            if (backward) std::reverse(states.begin(), states.end());
-            ASSERT_EQ(sol.path.size(), states.size() + 1) << "one virtual state";
-            ASSERT_TRUE(states.front() == s);
-            ASSERT_EQ(states.back().x, t.x);
-            ASSERT_EQ(states.back().y, t.y);
-            ASSERT_EQ(test::validatePath(model, states, sol.cost), "") << algorithmName(alg);
-            ASSERT_GE(sol.cost, optimal);
-            ASSERT_LE(static_cast<double>(sol.cost), sol.certified_bound * static_cast<double>(optimal) * (1 + 1e-12))
-                << algorithmName(alg) << (backward ? " backward" : " forward");
-          });
+          const SearchResult r =
+              makePlanner(defaultConfig(alg))->search(p, limits, [&](const Solution& sol) {
+                std::vector<LatticeState> states;
+                for (StateId id : sol.path) {
+                  if (id != p.virtualGoal()) states.push_back(p.state(id));
+                }
+                if (backward) std::reverse(states.begin(), states.end());
+                ASSERT_EQ(sol.path.size(), states.size() + 1) << "one virtual state";
+                ASSERT_TRUE(states.front() == s);
+                ASSERT_EQ(states.back().x, t.x);
+                ASSERT_EQ(states.back().y, t.y);
+                ASSERT_EQ(test::validatePath(model, states, sol.cost), "") << algorithmName(alg);
+                ASSERT_GE(sol.cost, optimal);
+                ASSERT_LE(static_cast<double>(sol.cost),
+                          sol.certified_bound * static_cast<double>(optimal) * (1 + 1e-12))
+                    << algorithmName(alg) << (backward ? " backward" : " forward");
+              });
           if (optimal == kInfiniteCost) {
             EXPECT_FALSE(r.hasSolution());
           } else {
@@ -111,7 +118,8 @@ TEST(AnyGoalHeading, AnchorStaysConsistent) {
       s = {static_cast<int>(rng() % 30), static_cast<int>(rng() % 30), 0};
     } while (!g.stateValid(s.x, s.y, s.heading));
     do {
-      t = {static_cast<int>(rng() % 30), static_cast<int>(rng() % 30), static_cast<int>(rng() % g.numHeadings())};
+      t = {static_cast<int>(rng() % 30), static_cast<int>(rng() % 30),
+           static_cast<int>(rng() % g.numHeadings())};
     } while (!g.stateValid(t.x, t.y, t.heading));
     LatticeProblem p(g, b.compute(t.x, t.y, kAnyHeading, false, 1), s, t, 0, false, true);
     std::vector<Edge> succ;
@@ -189,7 +197,8 @@ TEST(AnyGoalHeading, PlannerTakesTheHeadingThatFitsAndTheCheapest) {
   ASSERT_EQ(r.error, QueryError::kNone) << r.message;
   ASSERT_TRUE(r.hasSolution());
   ASSERT_TRUE(r.planned_goal.has_value());
-  EXPECT_NEAR(std::abs(std::remainder(r.planned_goal->theta, M_PI)), 0.0, 1e-9) << "along the corridor";
+  EXPECT_NEAR(std::abs(std::remainder(r.planned_goal->theta, M_PI)), 0.0, 1e-9)
+      << "along the corridor";
   EXPECT_NEAR(r.solutions.back().poses.back().theta, r.planned_goal->theta, 1e-12);
   EXPECT_NEAR(r.solutions.back().poses.back().x, 3.025, 1e-9);
 

@@ -26,8 +26,10 @@ std::set<std::pair<int, int>> bruteForce(const Poly& poly, double grow) {
     miny = std::min(miny, v[1]);
     maxy = std::max(maxy, v[1]);
   }
-  for (int j = static_cast<int>(std::floor(miny)) - 2; j <= static_cast<int>(std::floor(maxy)) + 2; ++j) {
-    for (int i = static_cast<int>(std::floor(minx)) - 2; i <= static_cast<int>(std::floor(maxx)) + 2; ++i) {
+  for (int j = static_cast<int>(std::floor(miny)) - 2; j <= static_cast<int>(std::floor(maxy)) + 2;
+       ++j) {
+    for (int i = static_cast<int>(std::floor(minx)) - 2;
+         i <= static_cast<int>(std::floor(maxx)) + 2; ++i) {
       if (test::polygonMeetsSquare(poly, i, j, grow)) out.insert({i, j});
     }
   }
@@ -150,10 +152,12 @@ void checkSweeps(const PrimitiveSet& set, const Poly& footprint) {
       }
     }
     for (const auto& c2 : dense) {
-      ASSERT_TRUE(swept.count(c2)) << "heading " << p.start_heading << " prim " << p.id << " misses (" << c2.first << ", " << c2.second << ")";
+      ASSERT_TRUE(swept.count(c2)) << "heading " << p.start_heading << " prim " << p.id
+                                   << " misses (" << c2.first << ", " << c2.second << ")";
     }
     for (const auto& c2 : swept) {
-      ASSERT_TRUE(grown.count(c2)) << "heading " << p.start_heading << " prim " << p.id << " sweeps (" << c2.first << ", " << c2.second << ") too far";
+      ASSERT_TRUE(grown.count(c2)) << "heading " << p.start_heading << " prim " << p.id
+                                   << " sweeps (" << c2.first << ", " << c2.second << ") too far";
     }
   }
 }
@@ -161,7 +165,8 @@ void checkSweeps(const PrimitiveSet& set, const Poly& footprint) {
 TEST(FootprintTest, SweepsOfSharedPrimitives) {
   AMHA_REQUIRE_SHARED_DATA(data);
   checkSweeps(readMprimFile(data + "/sbpl/pr2.mprim"), test::rectangle(0.11, 0.07));
-  checkSweeps(readMprimFile(data + "/sbpl/pr2_10cm.mprim"), {{-0.32, -0.33}, {0.35, -0.3}, {0.36, 0.31}, {-0.3, 0.33}, {-0.4, 0.0}});
+  checkSweeps(readMprimFile(data + "/sbpl/pr2_10cm.mprim"),
+              {{-0.32, -0.33}, {0.35, -0.3}, {0.36, 0.31}, {-0.3, 0.33}, {-0.4, 0.0}});
 }
 
 TEST(FootprintTest, SweepsOfGeneratedPrimitives) {

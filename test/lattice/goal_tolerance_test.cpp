@@ -34,11 +34,14 @@ GoalChoice bruteForceChoice(const LatticeGraph& g, const Pose2D& goal, double to
       for (int h = 0; h < g.numHeadings(); ++h) {
         if (!g.stateValid(x, y, h)) continue;
         if (!in[static_cast<std::size_t>(y) * g.width() + x]) {
-          if (best.outcome == GoalChoice::Outcome::kNoFreePose) best.outcome = GoalChoice::Outcome::kNoneReachable;
+          if (best.outcome == GoalChoice::Outcome::kNoFreePose)
+            best.outcome = GoalChoice::Outcome::kNoneReachable;
           continue;
         }
-        const double hd = std::abs(std::remainder(g.stateToPose(x, y, h).theta - goal.theta, 2.0 * M_PI));
-        const std::tuple<double, double, std::int64_t> k{d, hd, static_cast<std::int64_t>(y) * g.width() + x};
+        const double hd =
+            std::abs(std::remainder(g.stateToPose(x, y, h).theta - goal.theta, 2.0 * M_PI));
+        const std::tuple<double, double, std::int64_t> k{
+            d, hd, static_cast<std::int64_t>(y) * g.width() + x};
         if (k < key) {
           key = k;
           best.outcome = GoalChoice::Outcome::kFound;
@@ -59,7 +62,8 @@ std::shared_ptr<GridMap> clutteredMap(unsigned seed, int size) {
   auto m = test::randomMap(size, size, 0.05, seed, size / 4, 120);
   std::mt19937 rng(seed + 1000);
   std::uniform_int_distribution<std::size_t> cell(0, m->cost.size() - 1);
-  for (int k = 0; k < size * 2; ++k) m->cost[cell(rng)] = (k % 3 == 0) ? kUnknownCost : kInscribedCost;
+  for (int k = 0; k < size * 2; ++k)
+    m->cost[cell(rng)] = (k % 3 == 0) ? kUnknownCost : kInscribedCost;
   // A closed room (a lethal ring 2 cells thick, free inside), so that some free poses near a
   // goal are out of a start's reach.
   const int a = size / 6, b = size / 2;
@@ -92,7 +96,8 @@ TEST(GoalToleranceTest, ReachabilityEqualsAFloodFillOverManyQuestions) {
       int yes = 0;
       for (const int c : cells) {
         const auto a = reach.reaches(c % 40, c / 40, nullptr);
-        ASSERT_EQ(a == CentreReachability::Answer::kYes, want[c] != 0) << "seed " << seed << " cell " << c;
+        ASSERT_EQ(a == CentreReachability::Answer::kYes, want[c] != 0)
+            << "seed " << seed << " cell " << c;
         yes += a == CentreReachability::Answer::kYes;
       }
       largest = std::max(largest, yes);
@@ -125,11 +130,13 @@ TEST(GoalToleranceTest, ChoiceEqualsBruteForce) {
       const Pose2D corner = g.cellPoseToMap(0, 0, Pose2D{-0.025, -0.025, 0.0});
       const double gx = u(rng) * g.width() * 0.05, gy = u(rng) * g.height() * 0.05;
       const double cy = std::cos(g.map().origin_yaw), sy_ = std::sin(g.map().origin_yaw);
-      const Pose2D goal{corner.x + cy * gx - sy_ * gy, corner.y + sy_ * gx + cy * gy, (u(rng) - 0.5) * 7.0};
+      const Pose2D goal{corner.x + cy * gx - sy_ * gy, corner.y + sy_ * gx + cy * gy,
+                        (u(rng) - 0.5) * 7.0};
       const double tol = q % 10 == 9 ? INFINITY : u(rng) * u(rng) * 1.5;
       const GoalChoice got = nearestReachableGoal(g, goal, tol, sx, sy, nullptr);
       const GoalChoice want = bruteForceChoice(g, goal, tol, sx, sy);
-      ASSERT_EQ(static_cast<int>(got.outcome), static_cast<int>(want.outcome)) << "seed " << seed << " query " << q;
+      ASSERT_EQ(static_cast<int>(got.outcome), static_cast<int>(want.outcome))
+          << "seed " << seed << " query " << q;
       if (want.outcome == GoalChoice::Outcome::kFound) {
         EXPECT_EQ(got.x, want.x);
         EXPECT_EQ(got.y, want.y);
@@ -206,7 +213,9 @@ GoalOptions tolerance(double metres) {
   return o;
 }
 
-Pose2D cellCentre(int x, int y, double theta = 0.0) { return {(x + 0.5) * 0.05, (y + 0.5) * 0.05, theta}; }
+Pose2D cellCentre(int x, int y, double theta = 0.0) {
+  return {(x + 0.5) * 0.05, (y + 0.5) * 0.05, theta};
+}
 
 LatticeConfig boxRobot() {
   LatticeConfig c;
@@ -241,7 +250,8 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   ASSERT_EQ(r.error, QueryError::kNone) << r.message;
   ASSERT_TRUE(r.hasSolution());
   EXPECT_TRUE(r.goal_substituted);
-  EXPECT_NE(r.message.find("nearest reachable collision-free pose"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("nearest reachable collision-free pose"), std::string::npos)
+      << r.message;
   ASSERT_TRUE(r.planned_goal.has_value());
   EXPECT_NEAR(r.planned_goal->x, cellCentre(27, 40).x, 1e-9);
   EXPECT_NEAR(r.planned_goal->y, cellCentre(27, 40).y, 1e-9);
@@ -270,18 +280,22 @@ TEST(GoalToleranceTest, PlanSubstitutesObstructedGoalsOnly) {
   EXPECT_TRUE(r.solutions.empty());
 
   // From inside the box, free poses near an outside goal exist but are all out of reach.
-  r = planner.plan(cellCentre(40, 40), cellCentre(29, 10, 0.0), tolerance(0.3), astar, SearchLimits());
+  r = planner.plan(cellCentre(40, 40), cellCentre(29, 10, 0.0), tolerance(0.3), astar,
+                   SearchLimits());
   EXPECT_EQ(r.error, QueryError::kNone);  // (29, 10) is free: planned to exactly, and unreachable
   EXPECT_EQ(r.search.status, SearchStatus::kNoSolution);
   // (29, 40) is free, but the robot there touches the wall; within 0.12 m only x = 27, outside.
-  r = planner.plan(cellCentre(40, 40), cellCentre(29, 40, 0.0), tolerance(0.12), astar, SearchLimits());
+  r = planner.plan(cellCentre(40, 40), cellCentre(29, 40, 0.0), tolerance(0.12), astar,
+                   SearchLimits());
   EXPECT_EQ(r.error, QueryError::kGoalUnreachable) << r.message;
   EXPECT_STREQ(queryErrorName(r.error), "goal_unreachable");
 
   // Out of the map stays an error; bad tolerances are refused.
-  EXPECT_EQ(planner.plan(start, {-0.2, 1.0, 0.0}, tolerance(1.0), astar, SearchLimits()).error, QueryError::kGoalOutOfMap);
+  EXPECT_EQ(planner.plan(start, {-0.2, 1.0, 0.0}, tolerance(1.0), astar, SearchLimits()).error,
+            QueryError::kGoalOutOfMap);
   for (const double bad : {-0.1, static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
-    EXPECT_THROW(planner.plan(start, on_wall, tolerance(bad), astar, SearchLimits()), std::invalid_argument);
+    EXPECT_THROW(planner.plan(start, on_wall, tolerance(bad), astar, SearchLimits()),
+                 std::invalid_argument);
   }
 }
 
@@ -290,21 +304,26 @@ TEST(GoalToleranceTest, SubstitutePathsValidateAndAreOptimalForTheSubstitute) {
   // and every algorithm's solutions end there within their certified bounds of that optimum.
   LatticePlanner planner(hollowBoxMap(), boxRobot());
   const Pose2D start = cellCentre(10, 70, 0.0), goal = cellCentre(49, 35, 2.0);
-  const PlanResult a = planner.plan(start, goal, tolerance(0.4), defaultConfig(Algorithm::kAStar), SearchLimits());
+  const PlanResult a =
+      planner.plan(start, goal, tolerance(0.4), defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_TRUE(a.hasSolution()) << a.message;
   ASSERT_TRUE(a.goal_substituted);
-  const PlanResult direct = planner.plan(start, *a.planned_goal, defaultConfig(Algorithm::kAStar), SearchLimits());
+  const PlanResult direct =
+      planner.plan(start, *a.planned_goal, defaultConfig(Algorithm::kAStar), SearchLimits());
   ASSERT_TRUE(direct.hasSolution());
   EXPECT_EQ(a.best().search.cost, direct.best().search.cost);
-  for (const Algorithm alg : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kAnaStar}) {
-    const PlanResult r = planner.plan(start, goal, tolerance(0.4), defaultConfig(alg), SearchLimits());
+  for (const Algorithm alg :
+       {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kAnaStar}) {
+    const PlanResult r =
+        planner.plan(start, goal, tolerance(0.4), defaultConfig(alg), SearchLimits());
     ASSERT_TRUE(r.hasSolution()) << algorithmName(alg);
     EXPECT_TRUE(r.goal_substituted);
     for (const LatticeSolution& s : r.solutions) {
       EXPECT_NEAR(s.poses.back().x, a.planned_goal->x, 1e-9) << algorithmName(alg);
       EXPECT_NEAR(s.poses.back().y, a.planned_goal->y, 1e-9) << algorithmName(alg);
-      EXPECT_LE(static_cast<double>(s.search.cost),
-                s.search.certified_bound * static_cast<double>(direct.best().search.cost) * (1 + 1e-12))
+      EXPECT_LE(
+          static_cast<double>(s.search.cost),
+          s.search.certified_bound * static_cast<double>(direct.best().search.cost) * (1 + 1e-12))
           << algorithmName(alg);
     }
   }
@@ -315,7 +334,8 @@ TEST(GoalToleranceTest, CancelBeforeTheChoiceStopsIt) {
   std::atomic<bool> cancel{true};
   SearchLimits limits;
   limits.cancel = &cancel;
-  const PlanResult r = planner.plan(cellCentre(10, 10), cellCentre(30, 40), tolerance(0.5), defaultConfig(Algorithm::kAStar), limits);
+  const PlanResult r = planner.plan(cellCentre(10, 10), cellCentre(30, 40), tolerance(0.5),
+                                    defaultConfig(Algorithm::kAStar), limits);
   EXPECT_EQ(r.error, QueryError::kNone);
   EXPECT_EQ(r.search.status, SearchStatus::kCancelled);
   EXPECT_TRUE(r.solutions.empty());

@@ -3,8 +3,8 @@
 // opened passages, cost changes, the goal itself blocked and freed again. Checked along chains
 // of random updates, repairing grids that are one update old and grids several updates old
 // (the changes of all the updates since then passed together).
-#include <limits>
 #include <gtest/gtest.h>
+#include <limits>
 
 #include <algorithm>
 #include <random>
@@ -20,19 +20,22 @@ namespace amha {
 namespace lattice {
 namespace {
 
-std::string firstDifference(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b,
-                            int padded_width) {
-  if (a.size() != b.size()) return "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
+std::string firstDifference(const std::vector<std::uint32_t>& a,
+                            const std::vector<std::uint32_t>& b, int padded_width) {
+  if (a.size() != b.size())
+    return "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] != b[i]) {
-      return "padded cell (" + std::to_string(i % padded_width) + ", " + std::to_string(i / padded_width) +
-             "): " + std::to_string(a[i]) + " vs " + std::to_string(b[i]);
+      return "padded cell (" + std::to_string(i % padded_width) + ", " +
+             std::to_string(i / padded_width) + "): " + std::to_string(a[i]) + " vs " +
+             std::to_string(b[i]);
     }
   }
   return "";
 }
 
-void expectSame(const GoalHeuristics& repaired, const GoalHeuristics& full, int width, const std::string& what) {
+void expectSame(const GoalHeuristics& repaired, const GoalHeuristics& full, int width,
+                const std::string& what) {
   for (int k = 0; k < kNumGridKinds; ++k) {
     ASSERT_EQ(repaired.grids[k] == nullptr, full.grids[k] == nullptr) << what << ": grid " << k;
     if (full.grids[k]) {
@@ -58,7 +61,8 @@ std::vector<Robot> robots() {
   round.robot.radius = 0.2;
   out.push_back({"round robot", round});
   LatticeConfig polygon;
-  polygon.robot.footprint = test::rectangle(0.35, 0.15);  // openings differ: four grids of their own
+  polygon.robot.footprint =
+      test::rectangle(0.35, 0.15);  // openings differ: four grids of their own
   out.push_back({"rectangular robot", polygon});
   LatticeConfig point;
   point.robot.radius = 0.0;  // grids that alias each other
@@ -72,7 +76,8 @@ std::vector<Robot> robots() {
 
 // A random rectangle (some sticking out of the map) set to one cost or to a random mix.
 CellRect randomUpdate(std::mt19937& rng, const GridMap& map, GridMap& next, int step) {
-  const std::uint8_t values[] = {0, 0, 0, 17, 120, kInscribedCost, kLethalCost, kLethalCost, kUnknownCost};
+  const std::uint8_t values[] = {0,           0,           0,           17, 120, kInscribedCost,
+                                 kLethalCost, kLethalCost, kUnknownCost};
   std::uniform_int_distribution<int> side(1, 40), px(-10, map.width), py(-10, map.height);
   std::uniform_int_distribution<int> pick(0, sizeof values - 1);
   CellRect r;
@@ -104,7 +109,8 @@ TEST(HeuristicRepair, RepairedGridsEqualFreshOnesAlongChainsOfUpdates) {
       std::vector<CellRect> changed;
     };
     std::vector<Held> held;
-    for (const auto& g : {std::array<int, 3>{70, 50, 0}, {12, 88, kAnyHeading}, {130, 7, 3}, {40, 30, 0}}) {
+    for (const auto& g :
+         {std::array<int, 3>{70, 50, 0}, {12, 88, kAnyHeading}, {130, 7, 3}, {40, 30, 0}}) {
       held.push_back({g[0], g[1], g[2], builder->compute(g[0], g[1], g[2], true, 1), {}});
     }
     int repaired_grids = 0, in_place = 0;
@@ -119,7 +125,8 @@ TEST(HeuristicRepair, RepairedGridsEqualFreshOnesAlongChainsOfUpdates) {
         const std::uint8_t v = (step / 5) % 2 == 0 ? kLethalCost : 0;
         for (int y = r.y0; y < r.y1; ++y) {
           for (int x = r.x0; x < r.x1; ++x) {
-            if (x >= 0 && y >= 0 && x < map->width && y < map->height) next->cost[static_cast<std::size_t>(y) * map->width + x] = v;
+            if (x >= 0 && y >= 0 && x < map->width && y < map->height)
+              next->cost[static_cast<std::size_t>(y) * map->width + x] = v;
           }
         }
       }
@@ -131,19 +138,21 @@ TEST(HeuristicRepair, RepairedGridsEqualFreshOnesAlongChainsOfUpdates) {
         // those are handed over (moved) and repaired in place.
         const bool renew = (step + h.x) % 3 == 0;
         const DistanceGrid* old_anchor = h.grids->grids[0].get();
-        const auto repaired = renew ? updated_builder->repair(std::move(h.grids), h.changed, true, 1)
-                                    : updated_builder->repair(h.grids, h.changed, true, 1);
+        const auto repaired = renew
+                                  ? updated_builder->repair(std::move(h.grids), h.changed, true, 1)
+                                  : updated_builder->repair(h.grids, h.changed, true, 1);
         const auto full = updated_builder->compute(h.x, h.y, h.heading, true, 1);
         ASSERT_TRUE(repaired && full);
-        const std::string what = std::string(robot.name) + ", update " + std::to_string(step) + ", goal (" +
-                                 std::to_string(h.x) + ", " + std::to_string(h.y) + ", heading " +
-                                 std::to_string(h.heading) + "), grids " +
+        const std::string what = std::string(robot.name) + ", update " + std::to_string(step) +
+                                 ", goal (" + std::to_string(h.x) + ", " + std::to_string(h.y) +
+                                 ", heading " + std::to_string(h.heading) + "), grids " +
                                  std::to_string(h.changed.size()) + " update(s) old";
         expectSame(*repaired, *full, map->width, what);
         if (HasFailure()) return;
         ++repaired_grids;
         in_place += repaired->grids[0].get() == old_anchor;
-        EXPECT_TRUE(renew || repaired->grids[0].get() != old_anchor) << what << ": a shared grid was modified";
+        EXPECT_TRUE(renew || repaired->grids[0].get() != old_anchor)
+            << what << ": a shared grid was modified";
         if (renew) {
           h.grids = repaired;
           h.changed.clear();

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "test_support.h"
 
@@ -24,7 +24,8 @@ TEST(GridMovesTest, RequiredCells) {
   ASSERT_EQ(m16.size(), 16u);
   for (const GridMove& m : m16) {
     const int adx = std::abs(m.dx), ady = std::abs(m.dy);
-    const std::size_t expected = adx + ady == 1 ? 2 : 4;  // straight: the two ends; diagonal/knight: 4 cells
+    const std::size_t expected =
+        adx + ady == 1 ? 2 : 4;  // straight: the two ends; diagonal/knight: 4 cells
     EXPECT_EQ(m.required.size(), expected) << m.dx << "," << m.dy;
   }
 }
@@ -32,9 +33,12 @@ TEST(GridMovesTest, RequiredCells) {
 // Plain Dijkstra with a binary heap over the same rules (8-connected; a diagonal step needs one
 // passable side cell and pays for the cheaper one; cost = floor(units x length x (1 + P c / 252)
 // x fraction)), written independently.
-std::vector<std::uint64_t> referenceGrid(const GridMap& m, int gx, int gy, double units, double pen, int max_class) {
+std::vector<std::uint64_t> referenceGrid(const GridMap& m, int gx, int gy, double units, double pen,
+                                         int max_class) {
   const int w = m.width, h = m.height;
-  auto passable = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class; };
+  auto passable = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class;
+  };
   std::vector<std::uint64_t> d(static_cast<std::size_t>(w) * h, UINT64_MAX);
   using Item = std::pair<std::uint64_t, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
@@ -55,10 +59,13 @@ std::vector<std::uint64_t> referenceGrid(const GridMap& m, int gx, int gy, doubl
         if (dx != 0 && dy != 0) {
           const bool a = passable(x + dx, y), b = passable(x, y + dy);
           if (!a && !b) continue;
-          const int side = a && b ? std::min<int>(m.at(x + dx, y), m.at(x, y + dy)) : a ? m.at(x + dx, y) : m.at(x, y + dy);
+          const int side = a && b ? std::min<int>(m.at(x + dx, y), m.at(x, y + dy))
+                           : a    ? m.at(x + dx, y)
+                                  : m.at(x, y + dy);
           c = std::max(c, side);
         }
-        const double step = units * std::hypot(dx, dy) * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+        const double step =
+            units * std::hypot(dx, dy) * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
         const std::uint64_t nd = dist + static_cast<std::uint64_t>(std::floor(step));
         if (nd < d[ny * w + nx]) {
           d[ny * w + nx] = nd;
@@ -84,7 +91,8 @@ TEST(HeuristicGridTest, PointRobotGridEqualsReferenceDijkstra) {
     LatticeGraph g(map, c);
     HeuristicGridBuilder b(g);
     const DistanceGrid grid = b.computeOne(GridKind::kPointRobot, gx, gy);
-    const auto ref = referenceGrid(*map, gx, gy, g.cheapestUnitsPerCell(), c.cost.penalty, kLethalCost - 1);
+    const auto ref =
+        referenceGrid(*map, gx, gy, g.cheapestUnitsPerCell(), c.cost.penalty, kLethalCost - 1);
     for (int y = 0; y < map->height; ++y) {
       for (int x = 0; x < map->width; ++x) {
         const std::uint64_t r = ref[y * map->width + x];
@@ -101,10 +109,13 @@ TEST(HeuristicGridTest, PointRobotGridEqualsReferenceDijkstra) {
 
 // The same with any moves (gridMoves' required cells: all of them, or for a diagonal the two
 // ends and one side cell), written independently of the builder's unrolled loops.
-std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, double units, double pen, int max_class,
-                                             const std::vector<GridMove>& moves) {
+std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, double units,
+                                              double pen, int max_class,
+                                              const std::vector<GridMove>& moves) {
   const int w = m.width, h = m.height;
-  auto passable = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class; };
+  auto passable = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class;
+  };
   std::vector<std::uint64_t> d(static_cast<std::size_t>(w) * h, UINT64_MAX);
   using Item = std::pair<std::uint64_t, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
@@ -123,15 +134,18 @@ std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, 
         const bool end = (r.dx == 0 && r.dy == 0) || (r.dx == mv.dx && r.dy == mv.dy);
         const int cx = x + r.dx, cy = y + r.dy;
         if (end || !mv.either_side) {
-          if (!passable(cx, cy)) ok = false;
-          else c = std::max<int>(c, m.at(cx, cy));
+          if (!passable(cx, cy))
+            ok = false;
+          else
+            c = std::max<int>(c, m.at(cx, cy));
         } else if (passable(cx, cy)) {
           side = std::min<int>(side, m.at(cx, cy));
         }
       }
       if (!ok || (mv.either_side && side == 256)) continue;
       if (mv.either_side) c = std::max(c, side);
-      const double step = units * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+      const double step =
+          units * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       const std::uint64_t nd = dist + static_cast<std::uint64_t>(std::floor(step));
       const int j = (y + mv.dy) * w + (x + mv.dx);
       if (nd < d[j]) {
@@ -150,7 +164,8 @@ TEST(HeuristicGridTest, AnchorGridEqualsReferenceDijkstraForBothConnectivities) 
       auto map = test::randomMap(70, 50, 0.05, seed, 25, seed == 6 ? 0 : 200);
       const int gx = 35, gy = 25;
       map->cost[gy * map->width + gx] = 0;
-      for (int k = 0; k < 60; ++k) map->cost[(seed * 7919 + k * 104729) % map->cost.size()] = kInscribedCost;
+      for (int k = 0; k < 60; ++k)
+        map->cost[(seed * 7919 + k * 104729) % map->cost.size()] = kInscribedCost;
       LatticeConfig c;
       c.motion.turning_radius = 0.2;
       c.robot.radius = 0.0;
@@ -161,13 +176,14 @@ TEST(HeuristicGridTest, AnchorGridEqualsReferenceDijkstraForBothConnectivities) 
       LatticeGraph g(map, c);
       HeuristicGridBuilder b(g);
       const DistanceGrid grid = b.computeOne(GridKind::kAnchor, gx, gy);
-      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorUnitsPerCell(), c.cost.penalty, kInscribedCost - 1,
-                                          gridMoves(connectivity));
+      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorUnitsPerCell(), c.cost.penalty,
+                                          kInscribedCost - 1, gridMoves(connectivity));
       for (int y = 0; y < map->height; ++y) {
         for (int x = 0; x < map->width; ++x) {
           const std::uint64_t r = ref[y * map->width + x];
           const std::uint32_t v = grid.at(x, y);
-          ASSERT_EQ(v, r == UINT64_MAX ? kUnreachable : r) << connectivity << "-connected, seed " << seed << " at " << x << "," << y;
+          ASSERT_EQ(v, r == UINT64_MAX ? kUnreachable : r)
+              << connectivity << "-connected, seed " << seed << " at " << x << "," << y;
         }
       }
     }
@@ -191,12 +207,13 @@ LatticeFixture makeFixture(std::shared_ptr<GridMap> map, const LatticeConfig& c)
 // h0(p) <= cost(p, q) + h0(q) for every valid edge p -> q out of many random valid states, and
 // for backward search (tables measuring the distance from `goal`, used as the search's target)
 // h0(q) <= cost(p, q) + h0(p).
-void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, int samples, unsigned seed,
-                                   bool backward = false) {
+void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, int samples,
+                                   unsigned seed, bool backward = false) {
   auto heur = f.builder->compute(goal.x, goal.y, goal.heading, true, 0, backward);
   LatticeProblem p(*f.graph, heur, goal, goal, 3, backward);
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> rx(0, f.map->width - 1), ry(0, f.map->height - 1), rh(0, f.graph->numHeadings() - 1);
+  std::uniform_int_distribution<int> rx(0, f.map->width - 1), ry(0, f.map->height - 1),
+      rh(0, f.graph->numHeadings() - 1);
   int edges = 0;
   EXPECT_EQ(p.anchor(goal.x, goal.y, goal.heading), 0u);
   for (int k = 0; k < samples; ++k) {
@@ -216,10 +233,11 @@ void checkConsistencyOnRandomEdges(const LatticeFixture& f, LatticeState goal, i
         ASSERT_EQ(hp, kInfiniteHeuristic) << "a state that reaches a dead end must be a dead end";
         continue;
       }
-      ASSERT_NE(hp, kInfiniteHeuristic) << "infinite h at (" << x << "," << y << "," << h << ") with a finite successor";
+      ASSERT_NE(hp, kInfiniteHeuristic)
+          << "infinite h at (" << x << "," << y << "," << h << ") with a finite successor";
       ASSERT_LE(static_cast<Cost>(hp), c + static_cast<Cost>(hq))
-          << "(" << x << "," << y << "," << h << ") -> (" << x + a->dx << "," << y + a->dy << "," << a->end_heading
-          << ") backward " << backward;
+          << "(" << x << "," << y << "," << h << ") -> (" << x + a->dx << "," << y + a->dy << ","
+          << a->end_heading << ") backward " << backward;
       ASSERT_LE(bp, hp);
       ASSERT_LE(static_cast<Cost>(bp), c + static_cast<Cost>(bq)) << "inflation base inconsistent";
     }
@@ -270,7 +288,8 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
 TEST(AnchorTest, HeadingTermsCountedOnceSaveWeightedExpansions) {
   AMHA_REQUIRE_SHARED_DATA(data);
   SbplEnvironment env;
-  auto cubicle = std::make_shared<GridMap>(loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
+  auto cubicle = std::make_shared<GridMap>(
+      loadMapFile(data + "/sbpl/cubicle-25mm-inflated-env.cfg", 0, 1, {}, &env));
   LatticeConfig c;
   c.motion.mprim_file = data + "/sbpl/pr2.mprim";
   c.robot.footprint = test::rectangle(0.01, 0.01);
@@ -288,9 +307,12 @@ TEST(AnchorTest, HeadingTermsCountedOnceSaveWeightedExpansions) {
     costs[inflate] = r.solutions.front().search.cost;
     EXPECT_LE(r.solutions.front().search.certified_bound, 3.0);
   }
-  std::printf("[ weighted ] cubicle, epsilon 3: %llu expansions (cost %lld) with the heading terms once, %llu "
-              "(cost %lld) inflated\n", static_cast<unsigned long long>(expansions[0]), static_cast<long long>(costs[0]),
-              static_cast<unsigned long long>(expansions[1]), static_cast<long long>(costs[1]));
+  std::printf(
+      "[ weighted ] cubicle, epsilon 3: %llu expansions (cost %lld) with the heading terms once, "
+      "%llu "
+      "(cost %lld) inflated\n",
+      static_cast<unsigned long long>(expansions[0]), static_cast<long long>(costs[0]),
+      static_cast<unsigned long long>(expansions[1]), static_cast<long long>(costs[1]));
   EXPECT_LT(expansions[0] * 3, expansions[1] * 2);
 }
 
@@ -327,7 +349,8 @@ TEST(AnchorTest, WithoutTurnTermConsistentAndHeadingFree) {
           }
           ASSERT_LE(b, a) << x << "," << y << "," << h;
           differs += b < a;
-          // Without the term and without the abstraction (which knows headings), h depends on the cell only.
+          // Without the term and without the abstraction (which knows headings), h depends on the
+          // cell only.
           if (!coarse) {
             ASSERT_EQ(b, po.anchor(x, y, 0)) << x << "," << y << "," << h;
           }
@@ -352,7 +375,9 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
   const LatticeState goal{20, 15, 5};
   ASSERT_TRUE(f.graph->stateValid(goal.x, goal.y, goal.heading));
   const int n = f.graph->numHeadings();
-  auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y) * map->width + x) * n + h; };
+  auto index = [&](int x, int y, int h) {
+    return (static_cast<std::size_t>(y) * map->width + x) * n + h;
+  };
   const std::size_t total = static_cast<std::size_t>(map->width) * map->height * n;
   std::vector<std::vector<std::pair<std::size_t, Cost>>> reverse(total);
   for (int y = 0; y < map->height; ++y)
@@ -360,7 +385,8 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
       for (int h = 0; h < n; ++h)
         for (const LatticeAction* a = f.graph->actionsBegin(h); a != f.graph->actionsEnd(h); ++a) {
           const Cost cost = f.graph->edgeCost(x, y, *a);
-          if (cost != kInvalidEdge) reverse[index(x + a->dx, y + a->dy, a->end_heading)].push_back({index(x, y, h), cost});
+          if (cost != kInvalidEdge)
+            reverse[index(x + a->dx, y + a->dy, a->end_heading)].push_back({index(x, y, h), cost});
         }
   std::vector<Cost> togo(total, kInfiniteCost);
   using Item = std::pair<Cost, std::size_t>;
@@ -397,7 +423,8 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
           tight += hv * 10 >= t * 7;
           ratio_sum += static_cast<double>(hv) / std::max<Cost>(1, t);
         }
-    std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable, tight, reachable);
+    std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable,
+                tight, reachable);
     EXPECT_GT(reachable, 1000);
     EXPECT_GT(ratio_sum / reachable, 0.2);  // and it carries information
   }

@@ -88,10 +88,12 @@ TEST(ImageCodecsModule, NotLoadedToPlanOnCfgMapsLoadedForYamlImageMaps) {
     LatticePlanner planner(std::make_shared<GridMap>(env.map), config);
     SearchLimits limits;
     limits.time_limit_s = 30.0;
-    const PlanResult r = planner.plan(env.start, env.goal, defaultConfig(Algorithm::kAraStar), limits);
+    const PlanResult r =
+        planner.plan(env.start, env.goal, defaultConfig(Algorithm::kAraStar), limits);
     if (r.error != QueryError::kNone) return "query refused: " + r.message;
     if (r.solutions.empty()) return "no path on the .cfg map";
-    if (mapped(kImgcodecs) || mapped(kModule)) return "planning on a .cfg map loaded the image codecs";
+    if (mapped(kImgcodecs) || mapped(kModule))
+      return "planning on a .cfg map loaded the image codecs";
 
     // A map_server map: 3 x 2 pixels, top row black (occupied), bottom row white (free).
     writeFile(dir + "/m.pgm", std::string("P5\n3 2\n255\n\x00\x00\x00\xff\xff\xff", 17));
@@ -100,7 +102,8 @@ TEST(ImageCodecsModule, NotLoadedToPlanOnCfgMapsLoadedForYamlImageMaps) {
               "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
     const GridMap m = loadMapServerMap(dir + "/m.yaml");
     if (m.width != 3 || m.height != 2) return "the PGM map has the wrong size";
-    if (m.at(0, 0) != kFreeCost || m.at(2, 1) != kLethalCost) return "the PGM map has the wrong costs";
+    if (m.at(0, 0) != kFreeCost || m.at(2, 1) != kLethalCost)
+      return "the PGM map has the wrong costs";
     if (!mapped(kModule)) return "the module is not mapped after reading a PGM map";
     if (!mapped(kImgcodecs)) return "imgcodecs is not mapped after reading a PGM map";
     return "";
@@ -144,7 +147,8 @@ TEST(ImageFile, RoundTripsAndErrors) {
   } catch (const cv::Exception&) {
     ADD_FAILURE() << "cv::Exception crossed the module boundary";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("cannot write " + dir + "/x.unknown_format: ", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("cannot write " + dir + "/x.unknown_format: ", 0), 0u)
+        << e.what();
   }
 }
 
@@ -188,7 +192,8 @@ TEST(ImageFile, ConcurrentFirstUseOfAMissingModule) {
     }
     for (auto& t : threads) t.join();
     for (const auto& m : messages) {
-      if (m.rfind("cannot load image codecs module /nonexistent/libamha_image_codecs.so: ", 0) != 0) {
+      if (m.rfind("cannot load image codecs module /nonexistent/libamha_image_codecs.so: ", 0) !=
+          0) {
         return "unexpected error: '" + m + "'";
       }
     }
@@ -223,8 +228,9 @@ TEST(ImageFile, ModuleThatCannotBeLoadedIsAClearError) {
   EXPECT_EXIT(tryLoad(dir + "/missing.so"), ::testing::ExitedWithCode(3),
               "cannot load image codecs module .*/missing.so: .*No such file or directory\n"
               ".*/m.pgm: cannot read the image: cannot load image codecs module .*/missing.so");
-  EXPECT_EXIT(tryLoad(dir + "/not_a_library.so"), ::testing::ExitedWithCode(3),
-              "cannot load image codecs module .*/not_a_library.so: .*(invalid ELF header|too short)");
+  EXPECT_EXIT(
+      tryLoad(dir + "/not_a_library.so"), ::testing::ExitedWithCode(3),
+      "cannot load image codecs module .*/not_a_library.so: .*(invalid ELF header|too short)");
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // A planner built from the previous one after a local map change (a costmap update) must be
 // the planner a full build gives: the same clearance and openings in every cell, the same
-// heuristic grids and coarse abstraction, so the same edge costs, heuristics and plans. Checked after chains of random updates (so that errors
-// cannot pile up unseen), for round and polygonal robots, at the map's edges and corners.
+// heuristic grids and coarse abstraction, so the same edge costs, heuristics and plans. Checked
+// after chains of random updates (so that errors cannot pile up unseen), for round and polygonal
+// robots, at the map's edges and corners.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,8 +30,8 @@ std::string firstDifference(const std::vector<T>& a, const std::vector<T>& b, in
   }
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] != b[i]) {
-      return "cell (" + std::to_string(i % width) + ", " + std::to_string(i / width) + "): " +
-             std::to_string(+a[i]) + " vs " + std::to_string(+b[i]);
+      return "cell (" + std::to_string(i % width) + ", " + std::to_string(i / width) +
+             "): " + std::to_string(+a[i]) + " vs " + std::to_string(+b[i]);
     }
   }
   return "";
@@ -51,14 +52,18 @@ void expectSameHeuristics(const HeuristicGridBuilder& updated, const HeuristicGr
     }
     EXPECT_EQ(a->scale[k], b->scale[k]) << what << ": grid " << k;
   }
-  EXPECT_EQ(a->coarse, b->coarse) << what << ": coarse abstraction for goal (" << gx << ", " << gy << ")";
+  EXPECT_EQ(a->coarse, b->coarse) << what << ": coarse abstraction for goal (" << gx << ", " << gy
+                                  << ")";
 }
 
-void expectSameGraph(const LatticeGraph& updated, const LatticeGraph& full, const std::string& what) {
+void expectSameGraph(const LatticeGraph& updated, const LatticeGraph& full,
+                     const std::string& what) {
   const int w = full.width();
   EXPECT_EQ(firstDifference(updated.clearance(), full.clearance(), w), "") << what << ": clearance";
-  EXPECT_EQ(firstDifference(updated.openedFree(0), full.openedFree(0), w), "") << what << ": opening 0";
-  EXPECT_EQ(firstDifference(updated.openedFree(1), full.openedFree(1), w), "") << what << ": opening 1";
+  EXPECT_EQ(firstDifference(updated.openedFree(0), full.openedFree(0), w), "")
+      << what << ": opening 0";
+  EXPECT_EQ(firstDifference(updated.openedFree(1), full.openedFree(1), w), "")
+      << what << ": opening 1";
   EXPECT_EQ(updated.openingsEqual(), full.openingsEqual()) << what;
   EXPECT_EQ(updated.actions().size(), full.actions().size()) << what;
 }
@@ -91,7 +96,8 @@ std::vector<Robot> robots() {
   round.robot.radius = 0.2;  // 4 cells at 0.05 m
   out.push_back({"round robot, 3 inadmissible", round});
   LatticeConfig polygon;
-  polygon.robot.footprint = test::rectangle(0.35, 0.15);  // openings of 3 and 7.6 cells: they differ
+  polygon.robot.footprint =
+      test::rectangle(0.35, 0.15);  // openings of 3 and 7.6 cells: they differ
   out.push_back({"rectangular robot", polygon});
   LatticeConfig point;
   point.robot.radius = 0.0;
@@ -107,51 +113,54 @@ TEST(LatticeIncremental, ChainsOfRandomUpdatesGiveTheFullBuildsGraph) {
   // A cluttered map, and an open one where clearances reach their cap (so that a change is
   // felt as far away as the cap).
   for (int obstacles : {18, 2})
-  for (const Robot& robot : robots()) {
-    std::mt19937 rng(7);
-    std::shared_ptr<GridMap> map = test::randomMap(150, 110, 0.05, 3, obstacles, 40);
-    auto graph = std::make_unique<LatticeGraph>(map, robot.config);
-    auto builder = std::make_unique<HeuristicGridBuilder>(*graph);
-    const std::uint8_t values[] = {0, 0, 17, 120, kInscribedCost, kLethalCost, kLethalCost,
-                                   kUnknownCost};
-    for (int step = 0; step < 24; ++step) {
-      // Rectangles of 1..45 cells a side anywhere, some sticking out of the map (clipped).
-      std::uniform_int_distribution<int> side(1, 45), px(-10, map->width), py(-10, map->height);
-      CellRect r;
-      r.x0 = px(rng);
-      r.y0 = py(rng);
-      r.x1 = r.x0 + side(rng);
-      r.y1 = r.y0 + side(rng);
-      auto next = std::make_shared<GridMap>(*map);
-      std::uniform_int_distribution<int> pick(0, sizeof values - 1);
-      const bool one_value = step % 3 != 0;  // a blocked or cleared area, or a random mix
-      const std::uint8_t v = values[pick(rng)];
-      for (int y = std::max(r.y0, 0); y < std::min(r.y1, map->height); ++y) {
-        for (int x = std::max(r.x0, 0); x < std::min(r.x1, map->width); ++x) {
-          next->cost[static_cast<std::size_t>(y) * map->width + x] = one_value ? v : values[pick(rng)];
+    for (const Robot& robot : robots()) {
+      std::mt19937 rng(7);
+      std::shared_ptr<GridMap> map = test::randomMap(150, 110, 0.05, 3, obstacles, 40);
+      auto graph = std::make_unique<LatticeGraph>(map, robot.config);
+      auto builder = std::make_unique<HeuristicGridBuilder>(*graph);
+      const std::uint8_t values[] = {0,           0,           17,          120, kInscribedCost,
+                                     kLethalCost, kLethalCost, kUnknownCost};
+      for (int step = 0; step < 24; ++step) {
+        // Rectangles of 1..45 cells a side anywhere, some sticking out of the map (clipped).
+        std::uniform_int_distribution<int> side(1, 45), px(-10, map->width), py(-10, map->height);
+        CellRect r;
+        r.x0 = px(rng);
+        r.y0 = py(rng);
+        r.x1 = r.x0 + side(rng);
+        r.y1 = r.y0 + side(rng);
+        auto next = std::make_shared<GridMap>(*map);
+        std::uniform_int_distribution<int> pick(0, sizeof values - 1);
+        const bool one_value = step % 3 != 0;  // a blocked or cleared area, or a random mix
+        const std::uint8_t v = values[pick(rng)];
+        for (int y = std::max(r.y0, 0); y < std::min(r.y1, map->height); ++y) {
+          for (int x = std::max(r.x0, 0); x < std::min(r.x1, map->width); ++x) {
+            next->cost[static_cast<std::size_t>(y) * map->width + x] =
+                one_value ? v : values[pick(rng)];
+          }
         }
+        auto updated = std::make_unique<LatticeGraph>(*graph, next, r);
+        auto updated_builder = std::make_unique<HeuristicGridBuilder>(*builder, *updated);
+        const LatticeGraph full(next, robot.config);
+        const HeuristicGridBuilder full_builder(full);
+        const std::string what = std::string(robot.name) + ", " + std::to_string(obstacles) +
+                                 " obstacles, update " + std::to_string(step) + " (" +
+                                 std::to_string(r.x0) + ", " + std::to_string(r.y0) + ") - (" +
+                                 std::to_string(r.x1) + ", " + std::to_string(r.y1) + ")";
+        expectSameGraph(*updated, full, what);
+        // A goal at the change; now and then one far from it.
+        const int gx = std::clamp(r.x0, 0, map->width - 1),
+                  gy = std::clamp(r.y0, 0, map->height - 1);
+        expectSameHeuristics(*updated_builder, full_builder, full, gx, gy, what);
+        if (step % 6 == 5) {
+          expectSameHeuristics(*updated_builder, full_builder, full, map->width / 2,
+                               map->height / 2, what);
+        }
+        if (HasFailure()) return;
+        map = next;
+        graph = std::move(updated);
+        builder = std::move(updated_builder);
       }
-      auto updated = std::make_unique<LatticeGraph>(*graph, next, r);
-      auto updated_builder = std::make_unique<HeuristicGridBuilder>(*builder, *updated);
-      const LatticeGraph full(next, robot.config);
-      const HeuristicGridBuilder full_builder(full);
-      const std::string what = std::string(robot.name) + ", " + std::to_string(obstacles) +
-                               " obstacles, update " + std::to_string(step) + " (" +
-                               std::to_string(r.x0) + ", " + std::to_string(r.y0) + ") - (" +
-                               std::to_string(r.x1) + ", " + std::to_string(r.y1) + ")";
-      expectSameGraph(*updated, full, what);
-      // A goal at the change; now and then one far from it.
-      const int gx = std::clamp(r.x0, 0, map->width - 1), gy = std::clamp(r.y0, 0, map->height - 1);
-      expectSameHeuristics(*updated_builder, full_builder, full, gx, gy, what);
-      if (step % 6 == 5) {
-        expectSameHeuristics(*updated_builder, full_builder, full, map->width / 2, map->height / 2, what);
-      }
-      if (HasFailure()) return;
-      map = next;
-      graph = std::move(updated);
-      builder = std::move(updated_builder);
     }
-  }
 }
 
 // One obstacle appears in open space: every cell within the clearance cap of it changes, the
@@ -191,7 +200,8 @@ TEST(LatticeIncremental, ClearanceClassRadiiAreAtMost255AndNeverBelowARadius) {
   ASSERT_TRUE(std::is_sorted(classes.begin(), classes.end()));
   EXPECT_EQ(classes.back(), *std::max_element(many.begin(), many.end()));
   for (const float r : many) {
-    const auto c = std::lower_bound(classes.begin(), classes.end(), r);  // the action's class radius
+    const auto c =
+        std::lower_bound(classes.begin(), classes.end(), r);  // the action's class radius
     ASSERT_NE(c, classes.end()) << r;
     EXPECT_GE(*c, r);
     EXPECT_LE(*c - r, classes.back() / 255.0f * 1.001f) << "rounded up by more than one level";
@@ -234,7 +244,8 @@ TEST(LatticeIncremental, AnUpdatedPlannerPlansLikeAFreshOne) {
       for (int x = x0; x < x1; ++x) {
         bool clear = true;
         for (int dy = -6; dy <= 6 && clear; ++dy) {
-          for (int dx = -6; dx <= 6 && clear; ++dx) clear = map->at(x + dx, y + dy) < kInscribedCost;
+          for (int dx = -6; dx <= 6 && clear; ++dx)
+            clear = map->at(x + dx, y + dy) < kInscribedCost;
         }
         if (clear) return Pose2D{(x + 0.5) * 0.05, (y + 0.5) * 0.05, 0.0};
       }
@@ -277,7 +288,9 @@ TEST(LatticeIncremental, AnUpdatedPlannerRepairsTheGridsOfItsPredecessor) {
     limits.max_expansions = 200000;
     const PlanResult first = planner->plan(start, goal, search, limits);
     ASSERT_EQ(first.error, QueryError::kNone) << first.message;
-    auto source = [](const PlanResult& r) { return std::string(heuristicSourceName(r.heuristic_source)); };
+    auto source = [](const PlanResult& r) {
+      return std::string(heuristicSourceName(r.heuristic_source));
+    };
     EXPECT_EQ(source(first), "computed") << "no planner had computed this goal's grids";
     EXPECT_EQ(source(planner->plan(start, goal, search, limits)), "cached");
     // Two updates with no query between them: a wall with a gap, then an obstacle.
@@ -325,7 +338,8 @@ TEST(LatticeIncremental, KeptGridsAndCachedOnesStayWithinTheCacheSize) {
   EXPECT_EQ(source(a), "computed");
   EXPECT_EQ(source(b), "computed");  // b is now the most recently used
   const CellRect obstacle{60, 45, 61, 46};
-  planner = std::make_unique<LatticePlanner>(*planner, withCells(*map, obstacle, kLethalCost), obstacle);
+  planner =
+      std::make_unique<LatticePlanner>(*planner, withCells(*map, obstacle, kLethalCost), obstacle);
   EXPECT_EQ(source(c), "computed");  // c, b and a would be three: a is dropped
   EXPECT_EQ(source(b), "repaired");
   EXPECT_EQ(source(a), "computed");
@@ -353,8 +367,10 @@ TEST(LatticeIncremental, ConcurrentQueriesWhileAPlannerIsBuiltFromThisOne) {
   LatticePlanner fresh_first(cleared, config), fresh_next(next_map, config);
   const PlanResult want_first = fresh_first.plan(start, goal, search, limits);
   const PlanResult want_next = fresh_next.plan(start, goal, search, limits);
-  ASSERT_FALSE(want_first.solutions.empty() || want_next.solutions.empty()) << "the test wants paths";
-  ASSERT_NE(want_first.search.expansions, want_next.search.expansions) << "the wall should change the search";
+  ASSERT_FALSE(want_first.solutions.empty() || want_next.solutions.empty())
+      << "the test wants paths";
+  ASSERT_NE(want_first.search.expansions, want_next.search.expansions)
+      << "the wall should change the search";
   std::shared_ptr<LatticePlanner> next;
   std::atomic<bool> built{false};
   std::vector<std::string> failures(4);
@@ -365,9 +381,11 @@ TEST(LatticeIncremental, ConcurrentQueriesWhileAPlannerIsBuiltFromThisOne) {
         const bool on_next = t % 2 == 1 && built.load();
         const PlanResult r = (on_next ? next : first)->plan(start, goal, search, limits);
         const PlanResult& want = on_next ? want_next : want_first;
-        if (r.search.expansions != want.search.expansions || r.solutions.size() != want.solutions.size()) {
+        if (r.search.expansions != want.search.expansions ||
+            r.solutions.size() != want.solutions.size()) {
           failures[t] = std::string(on_next ? "next" : "first") + " planner: expansions " +
-                        std::to_string(r.search.expansions) + " instead of " + std::to_string(want.search.expansions);
+                        std::to_string(r.search.expansions) + " instead of " +
+                        std::to_string(want.search.expansions);
         }
       }
     });

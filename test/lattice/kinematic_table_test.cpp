@@ -4,10 +4,10 @@
 // of real and generated maps, the edges across the disc's edge included, and admissible
 // against the exact cost-to-go; the naive construction (T inside, Euclidean outside) is shown
 // to break there; a table raised by one unit is caught; tables are shared and cancellable.
-#include <limits>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 #include <random>
@@ -17,9 +17,9 @@
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/detail/kinematic_table.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "test_support.h"
 
@@ -41,7 +41,8 @@ using Direction = KinematicTables::Direction;
 
 std::vector<KinematicMove> movesOf(const LatticeGraph& g) {
   std::vector<KinematicMove> m;
-  for (const LatticeAction& a : g.actions()) m.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
+  for (const LatticeAction& a : g.actions())
+    m.push_back({a.dx, a.dy, a.start_heading, a.end_heading, a.base_cost});
   return m;
 }
 
@@ -51,15 +52,19 @@ std::vector<KinematicMove> movesOf(const LatticeGraph& g) {
 struct EmptyLatticeCosts {
   int half, nh;
   std::vector<Cost> d;
-  Cost at(int x, int y, int h) const { return d[(static_cast<std::size_t>(y + half) * (2 * half + 1) + (x + half)) * nh + h]; }
+  Cost at(int x, int y, int h) const {
+    return d[(static_cast<std::size_t>(y + half) * (2 * half + 1) + (x + half)) * nh + h];
+  }
 };
 
-EmptyLatticeCosts emptyLatticeCosts(const std::vector<KinematicMove>& moves, int nh, int half, Direction dir,
-                                    int heading) {
+EmptyLatticeCosts emptyLatticeCosts(const std::vector<KinematicMove>& moves, int nh, int half,
+                                    Direction dir, int heading) {
   EmptyLatticeCosts out{half, nh, {}};
   const int side = 2 * half + 1;
   out.d.assign(static_cast<std::size_t>(side) * side * nh, kInfiniteCost);
-  auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y + half) * side + (x + half)) * nh + h; };
+  auto index = [&](int x, int y, int h) {
+    return (static_cast<std::size_t>(y + half) * side + (x + half)) * nh + h;
+  };
   using Item = std::pair<Cost, std::tuple<int, int, int>>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
   for (int h = 0; h < nh; ++h) {
@@ -90,8 +95,8 @@ EmptyLatticeCosts emptyLatticeCosts(const std::vector<KinematicMove>& moves, int
 
 // Entries of `lookup` that differ from min(T, floor(G)); T from `exact` (a box of half-width
 // >= 2R, so exact wherever T <= G).
-int mismatches(const KinematicLookup& lookup, const EmptyLatticeCosts& exact, const KinematicTables& t,
-               std::string* first) {
+int mismatches(const KinematicLookup& lookup, const EmptyLatticeCosts& exact,
+               const KinematicTables& t, std::string* first) {
   const int R = t.radius();
   int bad = 0;
   for (int y = -R; y <= R; ++y) {
@@ -143,7 +148,8 @@ std::vector<NamedConfig> primitiveSets() {
 
 TEST(KinematicTable, EveryEntryIsTheCappedExactCostForEveryHeadingAndDirection) {
   for (NamedConfig& set : primitiveSets()) {
-    set.config.heuristics.kinematic_radius = 12 * set.resolution;  // R = 12 cells: quick, and every kind of entry
+    set.config.heuristics.kinematic_radius =
+        12 * set.resolution;  // R = 12 cells: quick, and every kind of entry
     // The table does not depend on the map; the map only has to hold the robot (0.4 m wide),
     // which the lattice checks: 24 cells of 0.025 m.
     auto map = std::make_shared<GridMap>();
@@ -163,11 +169,12 @@ TEST(KinematicTable, EveryEntryIsTheCappedExactCostForEveryHeadingAndDirection) 
       for (const int heading : headings) {
         const KinematicLookup lookup = t.lookup(dir, heading);
         ASSERT_TRUE(lookup.valid());
-        const EmptyLatticeCosts e = emptyLatticeCosts(moves, g.numHeadings(), 2 * t.radius() + 2, dir, heading);
+        const EmptyLatticeCosts e =
+            emptyLatticeCosts(moves, g.numHeadings(), 2 * t.radius() + 2, dir, heading);
         std::string first;
         EXPECT_EQ(mismatches(lookup, e, t, &first), 0)
-            << set.name << (dir == Direction::kToGoal ? " to goal" : " from start") << " heading " << heading
-            << ": first " << first;
+            << set.name << (dir == Direction::kToGoal ? " to goal" : " from start") << " heading "
+            << heading << ": first " << first;
         for (int h = 0; h < g.numHeadings(); ++h) {
           const double gcap = std::floor(t.costPerCell() * (2.0 * t.radius() - 9.0));
           const Cost tv = e.at(9, 0, h);
@@ -178,7 +185,8 @@ TEST(KinematicTable, EveryEntryIsTheCappedExactCostForEveryHeadingAndDirection) 
     EXPECT_GT(capped, 0) << set.name << ": the cap never applied at 9 cells out";
     EXPECT_GT(exact, 0) << set.name << ": no exact entry at 9 cells out";
     // Symmetric sets need fewer slices than headings (16 headings: 3 orbits).
-    if (std::string(set.name).rfind("generated", 0) == 0) EXPECT_EQ(t.numSymmetries(), 8) << set.name;
+    if (std::string(set.name).rfind("generated", 0) == 0)
+      EXPECT_EQ(t.numSymmetries(), 8) << set.name;
   }
 }
 
@@ -232,17 +240,20 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
     LatticeState t{0, 0, 0};
     std::vector<Cost> dist;
     for (int reach = 0; reach < 500;) {
-      t = {static_cast<int>(rng() % 40), static_cast<int>(rng() % 36), static_cast<int>(rng() % g.numHeadings())};
+      t = {static_cast<int>(rng() % 40), static_cast<int>(rng() % 36),
+           static_cast<int>(rng() % g.numHeadings())};
       if (!g.stateValid(t.x, t.y, t.heading)) continue;
       dist = costsTo(g, t);
-      reach = static_cast<int>(std::count_if(dist.begin(), dist.end(), [](Cost c) { return c != kInfiniteCost; }));
+      reach = static_cast<int>(
+          std::count_if(dist.begin(), dist.end(), [](Cost c) { return c != kInfiniteCost; }));
     }
     for (const bool backward : {false, true}) {
       const auto dir = backward ? Direction::kFromStart : Direction::kToGoal;
       const KinematicLookup k = g.kinematicTables()->lookup(dir, t.heading);
       const int r2 = k.radius() * k.radius();
       // Searching backward the "goal" of the problem is the lattice start t.
-      LatticeProblem p(g, b.compute(t.x, t.y, t.heading, false, 1, backward), t, t, 0, backward, false, k);
+      LatticeProblem p(g, b.compute(t.x, t.y, t.heading, false, 1, backward), t, t, 0, backward,
+                       false, k);
       std::vector<Edge> succ;
       for (int y = 0; y < 36; ++y) {
         for (int x = 0; x < 40; ++x) {
@@ -256,7 +267,8 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
               p.heuristics(e.to, &hv, 1);
               if (hu == kInfiniteHeuristic || hv == kInfiniteHeuristic) continue;
               ASSERT_LE(static_cast<Cost>(hu), e.cost + static_cast<Cost>(hv))
-                  << "seed " << seed << (backward ? " backward" : "") << " at (" << x << ", " << y << ", " << h << ")";
+                  << "seed " << seed << (backward ? " backward" : "") << " at (" << x << ", " << y
+                  << ", " << h << ")";
               ++edges;
               const LatticeState v = p.state(e.to);
               const int du = (x - t.x) * (x - t.x) + (y - t.y) * (y - t.y);
@@ -272,7 +284,9 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
     }
     // Admissible: the anchor (forward) never exceeds the exact cost-to-go over the map.
     const int nh = g.numHeadings();
-    auto index = [&](int x, int y, int h) { return (static_cast<std::size_t>(y) * g.width() + x) * nh + h; };
+    auto index = [&](int x, int y, int h) {
+      return (static_cast<std::size_t>(y) * g.width() + x) * nh + h;
+    };
     const KinematicLookup k = g.kinematicTables()->lookup(Direction::kToGoal, t.heading);
     LatticeProblem p(g, b.compute(t.x, t.y, t.heading, false, 1), t, t, 0, false, false, k);
     int finite = 0;
@@ -282,7 +296,8 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
           const Cost exact = dist[index(x, y, h)];
           if (exact == kInfiniteCost) continue;
           ++finite;
-          EXPECT_LE(static_cast<Cost>(p.anchor(x, y, h)), exact) << "seed " << seed << " (" << x << ", " << y << ", " << h << ")";
+          EXPECT_LE(static_cast<Cost>(p.anchor(x, y, h)), exact)
+              << "seed " << seed << " (" << x << ", " << y << ", " << h << ")";
         }
       }
     }
@@ -307,11 +322,13 @@ TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
   const LatticeGraph g(map, c);
   const KinematicTables& t = *g.kinematicTables();
   const int R = t.radius();
-  const EmptyLatticeCosts exact = emptyLatticeCosts(movesOf(g), g.numHeadings(), 3 * R, Direction::kToGoal, 0);
+  const EmptyLatticeCosts exact =
+      emptyLatticeCosts(movesOf(g), g.numHeadings(), 3 * R, Direction::kToGoal, 0);
   const KinematicLookup k = t.lookup(Direction::kToGoal, 0);
   const double s = t.costPerCell();
   auto naive = [&](int x, int y, int h) {
-    return x * x + y * y <= R * R ? static_cast<double>(exact.at(x, y, h)) : std::floor(s * std::hypot(x, y));
+    return x * x + y * y <= R * R ? static_cast<double>(exact.at(x, y, h))
+                                  : std::floor(s * std::hypot(x, y));
   };
   auto capped = [&](int x, int y, int h) {
     return std::max(std::floor(s * std::hypot(x, y)), static_cast<double>(k.value(x, y, h)));
@@ -346,7 +363,8 @@ TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
   const LatticeGraph g(map, c);
   const KinematicTables& t = *g.kinematicTables();
   auto slice = std::make_shared<KinematicSlice>(*t.buildSlice(Direction::kToGoal, 0, nullptr));
-  const EmptyLatticeCosts exact = emptyLatticeCosts(movesOf(g), g.numHeadings(), 2 * t.radius() + 2, Direction::kToGoal, 0);
+  const EmptyLatticeCosts exact =
+      emptyLatticeCosts(movesOf(g), g.numHeadings(), 2 * t.radius() + 2, Direction::kToGoal, 0);
   KinematicLookup lookup = t.lookup(Direction::kToGoal, 0);
   EXPECT_EQ(mismatches(lookup, exact, t, nullptr), 0);
   KinematicTableTestAccess::raise(*slice, 3, -2, 5);
@@ -363,7 +381,8 @@ TEST(KinematicTable, SharedBetweenPlannersAndBuiltOnce) {
   LatticePlanner pa(a, c), pb(b, c);
   EXPECT_TRUE(pa.prepareKinematicTables());
   EXPECT_GT(pa.kinematicTableBytes(), 0u);
-  EXPECT_EQ(pa.kinematicTableBytes(), pb.kinematicTableBytes()) << "one set of tables for both maps";
+  EXPECT_EQ(pa.kinematicTableBytes(), pb.kinematicTableBytes())
+      << "one set of tables for both maps";
   LatticeConfig other = c;
   other.cost.penalty = 2.0;  // free-cell costs are the same: still shared
   LatticePlanner pc(a, other);
@@ -378,7 +397,7 @@ TEST(KinematicTable, ABuildIsCancellableAndRetried) {
   LatticeConfig c;
   c.motion.turning_radius = 0.2;
   c.heuristics.kinematic_radius = 3.0;  // 60 cells: long enough to stop in the middle
-  c.cost.time_to_turn_45 = 0.7;   // tables of their own (other costs than the other tests')
+  c.cost.time_to_turn_45 = 0.7;         // tables of their own (other costs than the other tests')
   auto map = std::make_shared<GridMap>();
   map->width = map->height = 8;
   map->resolution = 0.05;

@@ -39,7 +39,9 @@ namespace lattice {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // A cancel or deadline is typically seen within a few milliseconds (the checks run every 4096
 // cells); the bounds leave room for a loaded 2-core machine and for the sanitizers' slowdown,
@@ -72,33 +74,41 @@ std::shared_ptr<GridMap> bigMap(int n, unsigned seed) {
   for (int k = 0; k < n / 4 * (n / 1000 + 1) * (n / 1000 + 1); ++k) {
     const int x0 = static_cast<int>(rng() % n), y0 = static_cast<int>(rng() % n);
     for (int y = y0; y < std::min(n, y0 + 20); ++y) {
-      std::fill_n(map->cost.begin() + static_cast<std::ptrdiff_t>(y) * n + x0, std::min(20, n - x0), kLethalCost);
+      std::fill_n(map->cost.begin() + static_cast<std::ptrdiff_t>(y) * n + x0, std::min(20, n - x0),
+                  kLethalCost);
     }
   }
   for (int y = n / 2 - 60; y < n / 2 + 60; ++y) {
-    std::fill_n(map->cost.begin() + static_cast<std::ptrdiff_t>(y) * n + n / 2 - 60, 120, kFreeCost);
+    std::fill_n(map->cost.begin() + static_cast<std::ptrdiff_t>(y) * n + n / 2 - 60, 120,
+                kFreeCost);
   }
   return map;
 }
 
 // Every pose of the path: the footprint (in cells) meets no lethal or unknown cell.
-::testing::AssertionResult posesCollisionFree(const LatticePlanner& planner, const std::vector<Pose2D>& poses) {
+::testing::AssertionResult posesCollisionFree(const LatticePlanner& planner,
+                                              const std::vector<Pose2D>& poses) {
   const GridMap& m = planner.map();
   for (std::size_t k = 0; k < poses.size(); ++k) {
     std::vector<std::array<double, 2>> poly = planner.footprintAt(poses[k]);
     double minx = 1e18, maxx = -1e18, miny = 1e18, maxy = -1e18;
     for (auto& v : poly) {
-      v = {(v[0] - m.origin_x) / m.resolution, (v[1] - m.origin_y) / m.resolution};  // origin_yaw is 0 here
+      v = {(v[0] - m.origin_x) / m.resolution,
+           (v[1] - m.origin_y) / m.resolution};  // origin_yaw is 0 here
       minx = std::min(minx, v[0]);
       maxx = std::max(maxx, v[0]);
       miny = std::min(miny, v[1]);
       maxy = std::max(maxy, v[1]);
     }
-    for (int j = static_cast<int>(std::floor(miny)) - 1; j <= static_cast<int>(std::floor(maxy)) + 1; ++j) {
-      for (int i = static_cast<int>(std::floor(minx)) - 1; i <= static_cast<int>(std::floor(maxx)) + 1; ++i) {
-        const bool blocked = i < 0 || j < 0 || i >= m.width || j >= m.height || m.at(i, j) >= kLethalCost;
+    for (int j = static_cast<int>(std::floor(miny)) - 1;
+         j <= static_cast<int>(std::floor(maxy)) + 1; ++j) {
+      for (int i = static_cast<int>(std::floor(minx)) - 1;
+           i <= static_cast<int>(std::floor(maxx)) + 1; ++i) {
+        const bool blocked =
+            i < 0 || j < 0 || i >= m.width || j >= m.height || m.at(i, j) >= kLethalCost;
         if (blocked && test::polygonMeetsSquare(poly, i, j, 0.0)) {
-          return ::testing::AssertionFailure() << "pose " << k << " touches cell (" << i << ", " << j << ")";
+          return ::testing::AssertionFailure()
+                 << "pose " << k << " touches cell (" << i << ", " << j << ")";
         }
       }
     }
@@ -128,7 +138,10 @@ TEST(LatticeLimits, Map4000x4000BuildsCancelsGridsAndPlansAShortQuery) {
   SearchLimits limits;
   limits.cancel = &cancel;
   PlanResult cancelled;
-  std::thread t([&] { cancelled = planner.plan({c, c, 0.0}, {c - 2.0, c + 1.5, 0.0}, defaultConfig(Algorithm::kAmhaStar), limits); });
+  std::thread t([&] {
+    cancelled = planner.plan({c, c, 0.0}, {c - 2.0, c + 1.5, 0.0},
+                             defaultConfig(Algorithm::kAmhaStar), limits);
+  });
   std::this_thread::sleep_for(std::chrono::milliseconds(30));
   const auto t_cancel = Clock::now();
   cancel = true;
@@ -154,11 +167,12 @@ TEST(LatticeLimits, Map4000x4000BuildsCancelsGridsAndPlansAShortQuery) {
   EXPECT_NEAR(poses.back().y, goal.y, 0.05);
   EXPECT_TRUE(posesCollisionFree(planner, poses));
   const long hwm = statusKb("VmHWM");
-  std::cout << "[ limits   ] 4000 x 4000: build " << build_s << " s (peak RSS +" << (build_hwm - rss0) / 1024
-            << " MB), cancel during the grids answered in " << cancel_latency_s * 1000 << " ms, short query "
-            << plan_s << " s (grids " << r.heuristic_seconds << " s, search " << r.search.elapsed_s << " s, "
-            << r.solutions.size() << " solutions, " << statusName(r.search.status) << "), peak RSS +"
-            << (hwm - rss0) / 1024 << " MB" << std::endl;
+  std::cout << "[ limits   ] 4000 x 4000: build " << build_s << " s (peak RSS +"
+            << (build_hwm - rss0) / 1024 << " MB), cancel during the grids answered in "
+            << cancel_latency_s * 1000 << " ms, short query " << plan_s << " s (grids "
+            << r.heuristic_seconds << " s, search " << r.search.elapsed_s << " s, "
+            << r.solutions.size() << " solutions, " << statusName(r.search.status)
+            << "), peak RSS +" << (hwm - rss0) / 1024 << " MB" << std::endl;
   RecordProperty("build_ms", static_cast<int>(build_s * 1000));
   RecordProperty("cancel_latency_ms", static_cast<int>(cancel_latency_s * 1000));
   RecordProperty("plan_ms", static_cast<int>(plan_s * 1000));
@@ -196,19 +210,25 @@ TEST(LatticeLimits, MemoryCapEndsASearchOnABigOpenMap) {
     resetPeakRss();
     const long rss0 = statusKb("VmRSS");
     const auto t0 = Clock::now();
-    const PlanResult r = planner.plan({10.0, 10.0, 0.0}, {(gx + 0.5) * 0.05, (gy + 0.5) * 0.05, 0.0}, defaultConfig(a), limits);
+    const PlanResult r = planner.plan(
+        {10.0, 10.0, 0.0}, {(gx + 0.5) * 0.05, (gy + 0.5) * 0.05, 0.0}, defaultConfig(a), limits);
     const double s = secondsSince(t0);
     const long grown = statusKb("VmHWM") - rss0;
     ASSERT_EQ(r.error, QueryError::kNone) << r.message;
-    EXPECT_EQ(r.search.status, SearchStatus::kMemoryLimit) << algorithmName(a) << ": " << statusName(r.search.status);
+    EXPECT_EQ(r.search.status, SearchStatus::kMemoryLimit)
+        << algorithmName(a) << ": " << statusName(r.search.status);
     EXPECT_TRUE(r.solutions.empty());
     // The search checks the domain's memory every 4096 expansions, and the domain's arrays grow
     // in between: it may end a little above the cap.
-    EXPECT_LE(r.search.peak_memory_bytes, limits.max_memory_bytes + limits.max_memory_bytes / 8) << algorithmName(a);
-    EXPECT_GT(r.search.peak_memory_bytes, limits.max_memory_bytes / 2) << "stopped long before the cap";
-    std::cout << "[ limits   ] " << algorithmName(a) << " with a 64 MB cap: " << statusName(r.search.status) << " after "
-              << s << " s, " << r.search.expansions << " expansions, " << r.search.peak_states << " states, counted "
-              << r.search.peak_memory_bytes / (1 << 20) << " MB, peak RSS +" << grown / 1024 << " MB" << std::endl;
+    EXPECT_LE(r.search.peak_memory_bytes, limits.max_memory_bytes + limits.max_memory_bytes / 8)
+        << algorithmName(a);
+    EXPECT_GT(r.search.peak_memory_bytes, limits.max_memory_bytes / 2)
+        << "stopped long before the cap";
+    std::cout << "[ limits   ] " << algorithmName(a)
+              << " with a 64 MB cap: " << statusName(r.search.status) << " after " << s << " s, "
+              << r.search.expansions << " expansions, " << r.search.peak_states
+              << " states, counted " << r.search.peak_memory_bytes / (1 << 20) << " MB, peak RSS +"
+              << grown / 1024 << " MB" << std::endl;
     if (!AMHA_SANITIZED && rss0 > 0) {
       EXPECT_LT(grown, 2 * 64L * 1024 + 32 * 1024) << "kB: memory not bounded by the cap";
     }
@@ -237,7 +257,8 @@ TEST(LatticeLimits, HugeOrNegativeSizesInMapsAreRefused) {
   EXPECT_NE(occ(4, INT_MIN, 4).find("is not positive"), std::string::npos);
   EXPECT_NE(occ(0, 0, 0).find("is not positive"), std::string::npos);
   EXPECT_NE(occ(INT_MAX, INT_MAX, 4).find("exceeds the limit"), std::string::npos);
-  EXPECT_NE(occ(65536, 65536, 4).find("4294967296 cells exceeds the limit of 67108864"), std::string::npos);
+  EXPECT_NE(occ(65536, 65536, 4).find("4294967296 cells exceeds the limit of 67108864"),
+            std::string::npos);
   EXPECT_NE(occ(2, 2, 3).find("data has 3 values, width x height is 4"), std::string::npos);
   EXPECT_NE(occ(2, 2, 4, -0.05).find("resolution -0.05 is not positive"), std::string::npos);
   EXPECT_NE(occ(2, 2, 4, std::nan("")).find("is not positive and finite"), std::string::npos);
@@ -248,10 +269,12 @@ TEST(LatticeLimits, HugeOrNegativeSizesInMapsAreRefused) {
   bad->width = -3;
   bad->height = 5;
   bad->resolution = 0.05;
-  EXPECT_NE(errorOf([&] { LatticePlanner p(bad, LatticeConfig()); }).find("is not positive"), std::string::npos);
+  EXPECT_NE(errorOf([&] { LatticePlanner p(bad, LatticeConfig()); }).find("is not positive"),
+            std::string::npos);
   bad->width = 3;
   bad->cost.assign(14, 0);
-  EXPECT_NE(errorOf([&] { LatticePlanner p(bad, LatticeConfig()); }).find("does not match"), std::string::npos);
+  EXPECT_NE(errorOf([&] { LatticePlanner p(bad, LatticeConfig()); }).find("does not match"),
+            std::string::npos);
 }
 
 TEST(LatticeLimits, HugeOrNegativeSizesInFilesAreRefused) {
@@ -262,51 +285,69 @@ TEST(LatticeLimits, HugeOrNegativeSizesInFilesAreRefused) {
   };
   // Moving AI .map headers.
   auto movingai = [&](const std::string& header) {
-    return errorOf([&] { loadMovingAiMap(write("m.map", "type octile\n" + header + "map\n"), 0.1, 1); });
+    return errorOf(
+        [&] { loadMovingAiMap(write("m.map", "type octile\n" + header + "map\n"), 0.1, 1); });
   };
-  EXPECT_NE(movingai("height 2000000\nwidth 4\n").find("height 2000000 is not in 1..1000000"), std::string::npos);
-  EXPECT_NE(movingai("height -5\nwidth 4\n").find("height -5 is not in 1..1000000"), std::string::npos);
-  EXPECT_NE(movingai("height 99999999999999999999999\nwidth 4\n").find("expected 'height N'"), std::string::npos);
-  EXPECT_NE(movingai("height 100000\nwidth 100000\n").find("cells (limit 2^26)"), std::string::npos);
-  EXPECT_NE(errorOf([&] { loadMovingAiMap(write("u.map", "type octile\nheight 9000\nwidth 9000\nmap\n"), 0.1, 64); })
-                .find("cells (limit 2^26)"),
+  EXPECT_NE(movingai("height 2000000\nwidth 4\n").find("height 2000000 is not in 1..1000000"),
+            std::string::npos);
+  EXPECT_NE(movingai("height -5\nwidth 4\n").find("height -5 is not in 1..1000000"),
+            std::string::npos);
+  EXPECT_NE(movingai("height 99999999999999999999999\nwidth 4\n").find("expected 'height N'"),
+            std::string::npos);
+  EXPECT_NE(movingai("height 100000\nwidth 100000\n").find("cells (limit 2^26)"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              loadMovingAiMap(write("u.map", "type octile\nheight 9000\nwidth 9000\nmap\n"), 0.1,
+                              64);
+            }).find("cells (limit 2^26)"),
             std::string::npos);
   // SBPL .cfg sizes.
   auto cfg = [&](const std::string& size) {
-    return errorOf([&] { loadSbplEnvironment(write("e.cfg", "discretization(cells): " + size + "\nobsthresh: 254\n")); });
+    return errorOf([&] {
+      loadSbplEnvironment(write("e.cfg", "discretization(cells): " + size + "\nobsthresh: 254\n"));
+    });
   };
   EXPECT_NE(cfg("2000000000 3").find("exceeds 2^26 cells"), std::string::npos);
   EXPECT_NE(cfg("-5 5").find("map size -5 x 5 is not positive"), std::string::npos);
-  EXPECT_NE(cfg("99999999999999999999999 5").find("is not positive or exceeds 2^26 cells"), std::string::npos);
+  EXPECT_NE(cfg("99999999999999999999999 5").find("is not positive or exceeds 2^26 cells"),
+            std::string::npos);
   EXPECT_NE(cfg("65536 65536").find("exceeds 2^26 cells"), std::string::npos);
   // .mprim counts.
   auto mprim = [&](const std::string& text) {
     std::istringstream in(text);
     return errorOf([&] { readMprim(in, "x.mprim"); });
   };
-  EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: 100000\n").find("numberofangles 100000 is not in 1..1024"), std::string::npos);
-  EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: -16\n").find("numberofangles -16 is not in 1..1024"), std::string::npos);
+  EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: 100000\n")
+                .find("numberofangles 100000 is not in 1..1024"),
+            std::string::npos);
+  EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: -16\n")
+                .find("numberofangles -16 is not in 1..1024"),
+            std::string::npos);
   EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: 1\ntotalnumberofprimitives: 2000000000\n")
                 .find("totalnumberofprimitives 2000000000 is not in 1..1000000"),
             std::string::npos);
-  EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: 1\ntotalnumberofprimitives: 1\nprimID: 0\nstartangle_c: 0\n"
+  EXPECT_NE(mprim("resolution_m: 0.1\nnumberofangles: 1\ntotalnumberofprimitives: 1\nprimID: "
+                  "0\nstartangle_c: 0\n"
                   "endpose_c: 1 0 0\nadditionalactioncostmult: 1\nintermediateposes: -1\n")
                 .find("intermediateposes -1 is not in 1..100000"),
             std::string::npos);
   // map_server: a resolution that is not positive.
   write("i.pgm", std::string("P5\n2 2\n255\n") + std::string(4, '\xff'));
-  EXPECT_NE(errorOf([&] {
-              loadMapServerMap(write("y.yaml", "image: i.pgm\nresolution: -0.05\norigin: [0, 0, 0]\nnegate: 0\n"
-                                               "occupied_thresh: 0.65\nfree_thresh: 0.196\n"));
-            }).find("resolution -0.05 is not positive"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] {
+        loadMapServerMap(write("y.yaml",
+                               "image: i.pgm\nresolution: -0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+                               "occupied_thresh: 0.65\nfree_thresh: 0.196\n"));
+      }).find("resolution -0.05 is not positive"),
+      std::string::npos);
 }
 
 // ---------------------------------------------------------------------------------------------
 // Absurd robots and the planner's setup (issue 22, item 2): refused up front, or stopped by the
 // request's cancel, time budget and memory cap.
 
-std::string setupError(const std::shared_ptr<GridMap>& map, const LatticeConfig& c, LatticeError::Kind* kind) {
+std::string setupError(const std::shared_ptr<GridMap>& map, const LatticeConfig& c,
+                       LatticeError::Kind* kind) {
   try {
     LatticePlanner p(map, c);
   } catch (const LatticeError& e) {
@@ -411,7 +452,8 @@ TEST(LatticeLimits, SetupHonoursCancelTimeBudgetAndMemoryCap) {
   try {
     LatticePlanner p(map, c, capped);
   } catch (const SetupStopped& e) {
-    EXPECT_NE(std::string(e.what()).find("above the memory cap of 33 MB"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("above the memory cap of 33 MB"), std::string::npos)
+        << e.what();
   }
 
   // A plan's heuristic grids count against its memory cap too (4 grids of 4 bytes a cell).
@@ -419,7 +461,8 @@ TEST(LatticeLimits, SetupHonoursCancelTimeBudgetAndMemoryCap) {
   LatticePlanner planner(map, c);
   SearchLimits small;
   small.max_memory_bytes = 600 * 600;
-  const PlanResult r = planner.plan({10.0, 10.0, 0.0}, {50.0, 50.0, 0.0}, defaultConfig(Algorithm::kAmhaStar), small);
+  const PlanResult r = planner.plan({10.0, 10.0, 0.0}, {50.0, 50.0, 0.0},
+                                    defaultConfig(Algorithm::kAmhaStar), small);
   EXPECT_EQ(r.error, QueryError::kNone) << r.message;
   EXPECT_EQ(r.search.status, SearchStatus::kMemoryLimit);
   EXPECT_TRUE(r.solutions.empty());
@@ -499,7 +542,8 @@ TEST(LatticeLimits, ConcurrentCallsForTheSameGridsOneCancelled) {
     (order == 0 ? second : first).join();
     EXPECT_EQ(a.search.status, SearchStatus::kCancelled) << "order " << order;
     EXPECT_LT(latency, kLatencyBound) << "order " << order;
-    std::cout << "[ limits   ] order " << order << ": the cancelled call returned " << latency * 1000 << " ms after its cancel" << std::endl;
+    std::cout << "[ limits   ] order " << order << ": the cancelled call returned "
+              << latency * 1000 << " ms after its cancel" << std::endl;
     ASSERT_FALSE(b.solutions.empty()) << "order " << order << ": " << statusName(b.search.status);
     EXPECT_TRUE(posesCollisionFree(planner, b.solutions.back().poses));
   }
@@ -523,10 +567,13 @@ TEST(LatticeConcurrent, PlanFromSeveralThreadsWithCancels) {
     PlanResult alone;
   };
   std::vector<Query> queries;
-  const Algorithm algorithms[] = {Algorithm::kAmhaStar, Algorithm::kAraStar, Algorithm::kAnaStar, Algorithm::kAStar};
+  const Algorithm algorithms[] = {Algorithm::kAmhaStar, Algorithm::kAraStar, Algorithm::kAnaStar,
+                                  Algorithm::kAStar};
   while (queries.size() < 8) {
-    Query q{{coord(rng), coord(rng), angle(rng)}, {coord(rng), coord(rng), angle(rng)},
-            defaultConfig(algorithms[queries.size() % 4]), {}};
+    Query q{{coord(rng), coord(rng), angle(rng)},
+            {coord(rng), coord(rng), angle(rng)},
+            defaultConfig(algorithms[queries.size() % 4]),
+            {}};
     if (planner.checkQuery(q.start, q.goal, nullptr) != QueryError::kNone) continue;
     q.alone = planner.plan(q.start, q.goal, q.algorithm, SearchLimits());
     queries.push_back(q);
@@ -557,14 +604,17 @@ TEST(LatticeConcurrent, PlanFromSeveralThreadsWithCancels) {
         std::ostringstream why;
         if (got.solutions.size() > q.alone.solutions.size()) why << "more solutions than alone; ";
         for (std::size_t i = 0; i < std::min(got.solutions.size(), q.alone.solutions.size()); ++i) {
-          if (got.solutions[i].search.cost != q.alone.solutions[i].search.cost) why << "solution " << i << " cost differs; ";
+          if (got.solutions[i].search.cost != q.alone.solutions[i].search.cost)
+            why << "solution " << i << " cost differs; ";
         }
         if (got.search.status == SearchStatus::kCancelled) {
           ++cancelled_calls;
           if (!cancelling) why << "cancelled without a cancel; ";
-        } else if (got.search.status != q.alone.search.status || got.solutions.size() != q.alone.solutions.size()) {
-          why << "status " << statusName(got.search.status) << " / " << got.solutions.size() << " solutions, alone "
-              << statusName(q.alone.search.status) << " / " << q.alone.solutions.size() << "; ";
+        } else if (got.search.status != q.alone.search.status ||
+                   got.solutions.size() != q.alone.solutions.size()) {
+          why << "status " << statusName(got.search.status) << " / " << got.solutions.size()
+              << " solutions, alone " << statusName(q.alone.search.status) << " / "
+              << q.alone.solutions.size() << "; ";
         }
         for (const LatticeSolution& s : got.solutions) {
           if (std::hypot(s.poses.front().x - q.start.x, s.poses.front().y - q.start.y) > 0.05 ||
@@ -573,7 +623,8 @@ TEST(LatticeConcurrent, PlanFromSeveralThreadsWithCancels) {
           }
           if (!posesCollisionFree(planner, s.poses)) why << "path collides; ";
         }
-        if (!why.str().empty()) failures[t] += "call " + std::to_string(k) + ": " + why.str() + "\n";
+        if (!why.str().empty())
+          failures[t] += "call " + std::to_string(k) + ": " + why.str() + "\n";
         ++checked;
       }
     });
@@ -581,8 +632,8 @@ TEST(LatticeConcurrent, PlanFromSeveralThreadsWithCancels) {
   for (auto& t : threads) t.join();
   for (const std::string& f : failures) EXPECT_EQ(f, "");
   EXPECT_EQ(checked.load(), kThreads * kCalls);
-  std::cout << "[ limits   ] " << checked.load() << " concurrent calls, " << cancelled_calls.load() << " cancelled"
-            << std::endl;
+  std::cout << "[ limits   ] " << checked.load() << " concurrent calls, " << cancelled_calls.load()
+            << " cancelled" << std::endl;
 }
 
 }  // namespace

@@ -23,13 +23,21 @@ using Clock = std::chrono::steady_clock;
 
 // Two headings, a straight primitive each; `middle` are `n_middle` extra intermediate poses of
 // the first.
-std::string twoHeadings(const std::string& middle, int n_middle = 1, const std::string& res = "0.025") {
-  return "resolution_m: " + res + "\nnumberofangles: 2\ntotalnumberofprimitives: 2\n"
-         "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: 1\nintermediateposes: " +
-         std::to_string(2 + n_middle) + "\n"
-         "0 0 0\n" + middle + "\n" + res + " 0 0\n"
-         "primID: 0\nstartangle_c: 1\nendpose_c: -1 0 1\nadditionalactioncostmult: 1\nintermediateposes: 2\n"
-         "0 0 3.14159\n-" + res + " 0 3.14159\n";
+std::string twoHeadings(const std::string& middle, int n_middle = 1,
+                        const std::string& res = "0.025") {
+  return "resolution_m: " + res +
+         "\nnumberofangles: 2\ntotalnumberofprimitives: 2\n"
+         "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: "
+         "1\nintermediateposes: " +
+         std::to_string(2 + n_middle) +
+         "\n"
+         "0 0 0\n" +
+         middle + "\n" + res +
+         " 0 0\n"
+         "primID: 0\nstartangle_c: 1\nendpose_c: -1 0 1\nadditionalactioncostmult: "
+         "1\nintermediateposes: 2\n"
+         "0 0 3.14159\n-" +
+         res + " 0 3.14159\n";
 }
 
 std::string mprimError(const std::string& text) {
@@ -47,19 +55,24 @@ std::string mprimError(const std::string& text) {
 // walk over the primitive's cells was quadratic). Such primitives are now refused, and the
 // walk is a heap-based Dijkstra.
 TEST(MprimRegression, IntermediatePosesFarAwayAreRefused) {
-  EXPECT_NE(mprimError(twoHeadings("0.0125 303.08 0")).find("r.mprim:11: primID 0 (start heading 0): its intermediate poses are"),
+  EXPECT_NE(mprimError(twoHeadings("0.0125 303.08 0"))
+                .find("r.mprim:11: primID 0 (start heading 0): its intermediate poses are"),
             std::string::npos);
-  EXPECT_NE(mprimError(twoHeadings("0.0125 303.08 0")).find("cells long (at most 1000)"), std::string::npos);
+  EXPECT_NE(mprimError(twoHeadings("0.0125 303.08 0")).find("cells long (at most 1000)"),
+            std::string::npos);
   // mprim fuzzer, regression-long-detour-2: a 180 m detour (7200 cells) was still allowed by a
   // first limit of 10000 cells, and its footprint sweep took over 10 s under the sanitizers.
-  EXPECT_NE(mprimError(twoHeadings("0.0722 90.050 0")).find("cells long (at most 1000)"), std::string::npos);
+  EXPECT_NE(mprimError(twoHeadings("0.0722 90.050 0")).find("cells long (at most 1000)"),
+            std::string::npos);
   EXPECT_NE(mprimError(twoHeadings("1e300 -1e300 0")).find("cells long"), std::string::npos);
   EXPECT_EQ(mprimError(twoHeadings("0.0125 0 0")), "(no error)");
   // A first pose far outside int range (in cells) is refused, not undefined behaviour.
-  EXPECT_NE(mprimError("resolution_m: 1e-300\nnumberofangles: 1\ntotalnumberofprimitives: 1\nprimID: 0\nstartangle_c: 0\n"
-                       "endpose_c: 0 0 0\nadditionalactioncostmult: 1\nintermediateposes: 1\n1 0 0\n")
-                .find("is not in the start cell"),
-            std::string::npos);
+  EXPECT_NE(
+      mprimError("resolution_m: 1e-300\nnumberofangles: 1\ntotalnumberofprimitives: 1\nprimID: "
+                 "0\nstartangle_c: 0\n"
+                 "endpose_c: 0 0 0\nadditionalactioncostmult: 1\nintermediateposes: 1\n1 0 0\n")
+          .find("is not in the start cell"),
+      std::string::npos);
 }
 
 TEST(MprimRegression, LongPrimitivesStillBuildQuickly) {
@@ -81,7 +94,8 @@ TEST(MprimRegression, LongPrimitivesStillBuildQuickly) {
   // The long primitive never fits the map; the other moves still plan.
   SearchLimits limits;
   limits.max_expansions = 1000;
-  const PlanResult r = planner.plan({0.2, 0.2, 3.14159}, {0.1, 0.2, 3.14159}, defaultConfig(Algorithm::kAStar), limits);
+  const PlanResult r = planner.plan({0.2, 0.2, 3.14159}, {0.1, 0.2, 3.14159},
+                                    defaultConfig(Algorithm::kAStar), limits);
   EXPECT_EQ(r.error, QueryError::kNone) << r.message;
   EXPECT_FALSE(r.solutions.empty());
 }
@@ -105,8 +119,9 @@ TEST(MapServerRegression, HugeImagesAreRefusedBeforeDecoding) {
   const std::string dir = test::tempDir();
   auto load = [&](const std::string& image_bytes) {
     std::ofstream(dir + "/m.img", std::ios::binary) << image_bytes;
-    std::ofstream(dir + "/m.yaml") << "image: m.img\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
-                                      "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    std::ofstream(dir + "/m.yaml")
+        << "image: m.img\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+           "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
     try {
       loadMapServerMap(dir + "/m.yaml");
     } catch (const LatticeError& e) {
@@ -116,16 +131,21 @@ TEST(MapServerRegression, HugeImagesAreRefusedBeforeDecoding) {
     return std::string("(no error)");
   };
   const auto t0 = Clock::now();
-  EXPECT_NE(load("P5\n70000 70000\n255\n").find("m.img: the image is 70000 x 70000 pixels, more than the 67108864 cells"),
+  EXPECT_NE(load("P5\n70000 70000\n255\n")
+                .find("m.img: the image is 70000 x 70000 pixels, more than the 67108864 cells"),
             std::string::npos);
   EXPECT_NE(load("P5 # comment\n8193\n8193 255\n").find("8193 x 8193 pixels"), std::string::npos);
-  EXPECT_NE(load("P2\n99999999999999999999 2\n255\n").find("4294967296 x 2 pixels"), std::string::npos);
+  EXPECT_NE(load("P2\n99999999999999999999 2\n255\n").find("4294967296 x 2 pixels"),
+            std::string::npos);
   std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0\x08\0\0\0\0", 29);
   EXPECT_NE(load(png).find("100000 x 100000 pixels"), std::string::npos);
   // BMP: not pre-checked; OpenCV refuses it, and its exception becomes a LatticeError.
-  auto le32 = [](std::uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; };
-  const std::string bmp = "BM" + le32(54) + le32(0) + le32(54) + le32(40) + le32(70000) + le32(70000) +
-                          std::string("\x01\0\x18\0", 4) + le32(0) + le32(0) + le32(2835) + le32(2835) + le32(0) + le32(0);
+  auto le32 = [](std::uint32_t v) {
+    return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)};
+  };
+  const std::string bmp = "BM" + le32(54) + le32(0) + le32(54) + le32(40) + le32(70000) +
+                          le32(70000) + std::string("\x01\0\x18\0", 4) + le32(0) + le32(0) +
+                          le32(2835) + le32(2835) + le32(0) + le32(0);
   EXPECT_NE(load(bmp).find("m.img: cannot read the image"), std::string::npos);
   EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 5.0);
   // A small image still loads.
@@ -142,7 +162,8 @@ TEST(OccupancyRegression, ResolutionsOutsideTheSaneRangeAreRefused) {
       gridMapFromOccupancy(2, 2, res, 0, 0, 0, cells, 4, OccupancyConversion());
       ADD_FAILURE() << res;
     } catch (const LatticeError& e) {
-      EXPECT_NE(std::string(e.what()).find("m is outside [0.001, 1000]"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("m is outside [0.001, 1000]"), std::string::npos)
+          << e.what();
     }
     auto map = test::randomMap(7, 15, 0.05, 1, 0, 0);
     map->resolution = res;
@@ -151,7 +172,8 @@ TEST(OccupancyRegression, ResolutionsOutsideTheSaneRangeAreRefused) {
       ADD_FAILURE() << res;
     } catch (const LatticeError& e) {
       EXPECT_EQ(e.kind(), LatticeError::Kind::kMap);
-      EXPECT_NE(std::string(e.what()).find("is outside [0.001, 1000]"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is outside [0.001, 1000]"), std::string::npos)
+          << e.what();
     }
   }
   for (double res : {kMinResolution, kMaxResolution}) {
@@ -191,7 +213,8 @@ OriginRefusal refusalsOfOrigin(double x, double y, double yaw) {
 TEST(OccupancyRegression, OriginsTooFarAwayAreRefused) {
   for (double x : {2.68e161, -1.5e8}) {
     const OriginRefusal r = refusalsOfOrigin(x, 0, 0);
-    EXPECT_NE(r.conversion_error.find("is farther than 1e+08 m"), std::string::npos) << x << ": " << r.conversion_error;
+    EXPECT_NE(r.conversion_error.find("is farther than 1e+08 m"), std::string::npos)
+        << x << ": " << r.conversion_error;
     EXPECT_TRUE(refusalsOfOrigin(0, x, 0).planner_refused) << x;
   }
   // UTM-sized origins are fine, and poses round-trip there.
@@ -214,7 +237,8 @@ TEST(OccupancyRegression, OriginsTooFarAwayAreRefused) {
 TEST(OccupancyRegression, OriginYawsBeyondAMillionRadiansAreRefused) {
   for (double yaw : {4.538e279, -1.1e6}) {
     const OriginRefusal r = refusalsOfOrigin(0, 0, yaw);
-    EXPECT_NE(r.conversion_error.find("origin yaw"), std::string::npos) << yaw << ": " << r.conversion_error;
+    EXPECT_NE(r.conversion_error.find("origin yaw"), std::string::npos)
+        << yaw << ": " << r.conversion_error;
     EXPECT_TRUE(r.planner_refused) << yaw;
   }
   // A yaw many turns round is still an angle: headings round-trip through poses.
@@ -257,7 +281,8 @@ TEST(OccupancyRegression, NonFinitePosesWithGoalOptionsAreRefusedBeforeUse) {
       {ok, {5.0, 0.6, 0.0}, QueryError::kGoalOutOfMap},
   };
   for (const auto& k : cases) {
-    const PlanResult r = planner.plan(k.start, k.goal, options, defaultConfig(Algorithm::kAStar), SearchLimits());
+    const PlanResult r =
+        planner.plan(k.start, k.goal, options, defaultConfig(Algorithm::kAStar), SearchLimits());
     EXPECT_EQ(r.error, k.expected) << r.message;
     EXPECT_FALSE(r.planned_goal.has_value());
   }

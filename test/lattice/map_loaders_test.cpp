@@ -20,7 +20,8 @@ void writeFile(const std::string& path, const std::string& text) {
   out << text;
 }
 
-std::string yaml(const std::string& image, const std::string& extra = "", const std::string& negate = "0") {
+std::string yaml(const std::string& image, const std::string& extra = "",
+                 const std::string& negate = "0") {
   return "image: " + image + "\nresolution: 0.05\norigin: [1.5, -2.0, 0.25]\nnegate: " + negate +
          "\noccupied_thresh: 0.65\nfree_thresh: 0.196\n" + extra;
 }
@@ -36,7 +37,8 @@ std::string expectMapError(const std::function<void()>& f) {
   return "";
 }
 
-// A 4 x 3 image: row 0 (top) = black, 205 (unknown grey), white, 100; row 1 = 254 x4; row 2 = 0, 254, 254, 128.
+// A 4 x 3 image: row 0 (top) = black, 205 (unknown grey), white, 100; row 1 = 254 x4; row 2 = 0,
+// 254, 254, 128.
 cv::Mat testImage() {
   cv::Mat img(3, 4, CV_8U);
   const std::uint8_t v[3][4] = {{0, 205, 255, 100}, {254, 254, 254, 254}, {0, 254, 254, 128}};
@@ -77,16 +79,17 @@ TEST(MapServerTest, NegateScaleAndRaw) {
   ASSERT_TRUE(cv::imwrite(dir + "/m.png", testImage()));
   writeFile(dir + "/neg.yaml", yaml(dir + "/m.png", "", "1"));  // absolute image path
   const GridMap n = loadMapServerMap(dir + "/neg.yaml");
-  EXPECT_EQ(n.at(0, 2), kFreeCost);     // black is free when negated
-  EXPECT_EQ(n.at(2, 2), kLethalCost);   // white is occupied
-  EXPECT_EQ(n.at(0, 1), kLethalCost);   // 254 -> 1 after negation: occ 0.996
+  EXPECT_EQ(n.at(0, 2), kFreeCost);    // black is free when negated
+  EXPECT_EQ(n.at(2, 2), kLethalCost);  // white is occupied
+  EXPECT_EQ(n.at(0, 1), kLethalCost);  // 254 -> 1 after negation: occ 0.996
 
   // Scale: 100 -> occ 0.608, ratio (0.608 - 0.196) / (0.65 - 0.196) = 0.907 -> 1 + 98 * 0.907 = 89.
   writeFile(dir + "/scale.yaml", yaml("m.png", "mode: scale\n"));
   int w = 0, h = 0;
   const auto occ = mapServerOccupancy(readMapServerYaml(dir + "/scale.yaml"), &w, &h);
   EXPECT_EQ(occ[2 * 4 + 3], 89);
-  EXPECT_EQ(occ[0 * 4 + 3], 1 + static_cast<int>(98 * ((255 - 128) / 255.0 - 0.196) / (0.65 - 0.196)));
+  EXPECT_EQ(occ[0 * 4 + 3],
+            1 + static_cast<int>(98 * ((255 - 128) / 255.0 - 0.196) / (0.65 - 0.196)));
   OccupancyConversion lethal100;
   lethal100.lethal_threshold = 100;
   const GridMap s = loadMapServerMap(dir + "/scale.yaml", lethal100);
@@ -102,14 +105,15 @@ TEST(MapServerTest, NegateScaleAndRaw) {
   EXPECT_EQ(raw[1 * 4 + 0], static_cast<std::int8_t>(254));
   const GridMap r = loadMapServerMap(dir + "/raw.yaml");
   EXPECT_EQ(r.at(2, 2), kUnknownCost);
-  EXPECT_EQ(r.at(0, 2), kFreeCost);  // raw 0
+  EXPECT_EQ(r.at(0, 2), kFreeCost);    // raw 0
   EXPECT_EQ(r.at(0, 1), kLethalCost);  // raw 254
 }
 
 TEST(MapServerTest, AlphaIsAveragedInTrinaryMode) {
   const std::string dir = test::tempDir();
   cv::Mat img(1, 2, CV_8UC4);
-  img.at<cv::Vec4b>(0, 0) = {255, 255, 255, 0};    // white, transparent: mean 191 -> occ 0.25 -> unknown
+  img.at<cv::Vec4b>(0, 0) = {255, 255, 255,
+                             0};  // white, transparent: mean 191 -> occ 0.25 -> unknown
   img.at<cv::Vec4b>(0, 1) = {255, 255, 255, 255};  // white, opaque -> free
   ASSERT_TRUE(cv::imwrite(dir + "/a.png", img));
   writeFile(dir + "/a.yaml", yaml("a.png"));
@@ -140,19 +144,38 @@ TEST(MapServerTest, WillowGarage) {
 TEST(MapServerTest, Errors) {
   const std::string dir = test::tempDir();
   ASSERT_TRUE(cv::imwrite(dir + "/m.pgm", testImage()));
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/missing.yaml"); }).find("cannot open"), std::string::npos);
+  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/missing.yaml"); }).find("cannot open"),
+            std::string::npos);
   writeFile(dir + "/a.yaml", yaml("nothere.pgm"));
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/a.yaml"); }).find("nothere.pgm: cannot read"), std::string::npos);
+  EXPECT_NE(
+      expectMapError([&] { loadMapServerMap(dir + "/a.yaml"); }).find("nothere.pgm: cannot read"),
+      std::string::npos);
   writeFile(dir + "/b.yaml", yaml("m.pgm", "mode: fancy\n"));
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/b.yaml"); }).find("b.yaml:7: mode 'fancy'"), std::string::npos);
-  writeFile(dir + "/c.yaml", "image: m.pgm\nresolution: -1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.2\n");
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/c.yaml"); }).find("c.yaml:2: resolution -1 is not positive"), std::string::npos);
-  writeFile(dir + "/d.yaml", "image: m.pgm\nresolution: 0.1\norigin: [0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.2\n");
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/d.yaml"); }).find("'origin' must be [x, y, yaw]"), std::string::npos);
-  writeFile(dir + "/e.yaml", "image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n");
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/e.yaml"); }).find("missing 'free_thresh'"), std::string::npos);
+  EXPECT_NE(
+      expectMapError([&] { loadMapServerMap(dir + "/b.yaml"); }).find("b.yaml:7: mode 'fancy'"),
+      std::string::npos);
+  writeFile(dir + "/c.yaml",
+            "image: m.pgm\nresolution: -1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: "
+            "0.65\nfree_thresh: 0.2\n");
+  EXPECT_NE(expectMapError([&] {
+              loadMapServerMap(dir + "/c.yaml");
+            }).find("c.yaml:2: resolution -1 is not positive"),
+            std::string::npos);
+  writeFile(dir + "/d.yaml",
+            "image: m.pgm\nresolution: 0.1\norigin: [0, 0]\nnegate: 0\noccupied_thresh: "
+            "0.65\nfree_thresh: 0.2\n");
+  EXPECT_NE(expectMapError([&] {
+              loadMapServerMap(dir + "/d.yaml");
+            }).find("'origin' must be [x, y, yaw]"),
+            std::string::npos);
+  writeFile(dir + "/e.yaml",
+            "image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n");
+  EXPECT_NE(
+      expectMapError([&] { loadMapServerMap(dir + "/e.yaml"); }).find("missing 'free_thresh'"),
+      std::string::npos);
   writeFile(dir + "/f.yaml", "image: [m.pgm\n");
-  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/f.yaml"); }).find("YAML syntax error"), std::string::npos);
+  EXPECT_NE(expectMapError([&] { loadMapServerMap(dir + "/f.yaml"); }).find("YAML syntax error"),
+            std::string::npos);
 }
 
 TEST(MovingAiTest, CellsUpscaleAndFlip) {
@@ -175,12 +198,24 @@ TEST(MovingAiTest, CellsUpscaleAndFlip) {
     for (int x = 4; x < 8; ++x) EXPECT_EQ(u.at(x, y), kFreeCost);
   }
   writeFile(dir + "/bad.map", "type octile\nheight 2\nwidth 3\nmap\n@.T\n.X.\n");
-  EXPECT_NE(expectMapError([&] { loadMovingAiMap(dir + "/bad.map", 0.1); }).find("bad.map:6: unknown terrain character 'X' in column 2"), std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadMovingAiMap(dir + "/bad.map", 0.1);
+            }).find("bad.map:6: unknown terrain character 'X' in column 2"),
+            std::string::npos);
   writeFile(dir + "/short.map", "type octile\nheight 3\nwidth 3\nmap\n@.T\n...\n");
-  EXPECT_NE(expectMapError([&] { loadMovingAiMap(dir + "/short.map", 0.1); }).find("missing map row 3 of 3"), std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadMovingAiMap(dir + "/short.map", 0.1);
+            }).find("missing map row 3 of 3"),
+            std::string::npos);
   writeFile(dir + "/wide.map", "type octile\nheight 1\nwidth 3\nmap\n@...\n");
-  EXPECT_NE(expectMapError([&] { loadMovingAiMap(dir + "/wide.map", 0.1); }).find("wide.map:5: row has 4 characters, width is 3"), std::string::npos);
-  EXPECT_NE(expectMapError([&] { loadMovingAiMap(dir + "/t.map", 0.0); }).find("resolution must be positive"), std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadMovingAiMap(dir + "/wide.map", 0.1);
+            }).find("wide.map:5: row has 4 characters, width is 3"),
+            std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadMovingAiMap(dir + "/t.map", 0.0);
+            }).find("resolution must be positive"),
+            std::string::npos);
 }
 
 TEST(MovingAiTest, SharedMaps) {
@@ -215,7 +250,7 @@ TEST(SbplEnvironmentTest, Env1) {
   EXPECT_EQ(e.map.at(5, 0), kFreeCost);
   EXPECT_EQ(e.map.at(6, 0), kLethalCost);
   EXPECT_EQ(e.map.at(7, 0), kLethalCost);
-  EXPECT_EQ(e.map.at(0, 7), kLethalCost);   // row 7: "1 1 1 1 0 ..."
+  EXPECT_EQ(e.map.at(0, 7), kLethalCost);  // row 7: "1 1 1 1 0 ..."
   EXPECT_EQ(e.map.at(11, 14), kLethalCost);
   EXPECT_EQ(e.map.at(10, 14), kFreeCost);
 }
@@ -233,7 +268,8 @@ TEST(SbplEnvironmentTest, CubicleCostsMatchTheText) {
   // Independent reading of the numbers after "environment:".
   std::ifstream in(path);
   std::string tok;
-  while (in >> tok && tok != "environment:") {}
+  while (in >> tok && tok != "environment:") {
+  }
   std::vector<int> raw;
   int v;
   while (in >> v) raw.push_back(v);
@@ -248,22 +284,34 @@ TEST(SbplEnvironmentTest, CubicleCostsMatchTheText) {
 
 TEST(SbplEnvironmentTest, Errors) {
   const std::string dir = test::tempDir();
-  const std::string head = "discretization(cells): 2 2\nobsthresh: 254\ncost_inscribed_thresh: 253\ncost_possibly_circumscribed_thresh: 128\n"
-                           "cellsize(meters): 0.1\nnominalvel(mpersecs): 1.0\ntimetoturn45degsinplace(secs): 1.0\n"
-                           "start(meters,rads): 0.05 0.05 0\nend(meters,rads): 0.15 0.15 0\nenvironment:\n";
+  const std::string head =
+      "discretization(cells): 2 2\nobsthresh: 254\ncost_inscribed_thresh: "
+      "253\ncost_possibly_circumscribed_thresh: 128\n"
+      "cellsize(meters): 0.1\nnominalvel(mpersecs): 1.0\ntimetoturn45degsinplace(secs): 1.0\n"
+      "start(meters,rads): 0.05 0.05 0\nend(meters,rads): 0.15 0.15 0\nenvironment:\n";
   writeFile(dir + "/ok.cfg", head + "0 1\n253 254\n");
   const SbplEnvironment ok = loadSbplEnvironment(dir + "/ok.cfg");
   EXPECT_EQ(ok.map.at(1, 0), 1);
   EXPECT_EQ(ok.map.at(0, 1), kInscribedCost);
   EXPECT_EQ(ok.map.at(1, 1), kLethalCost);
   writeFile(dir + "/short.cfg", head + "0 1\n253\n");
-  EXPECT_NE(expectMapError([&] { loadSbplEnvironment(dir + "/short.cfg"); }).find("the environment ends at cell (1, 1)"), std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadSbplEnvironment(dir + "/short.cfg");
+            }).find("the environment ends at cell (1, 1)"),
+            std::string::npos);
   writeFile(dir + "/badcost.cfg", head + "0 1\n253 300\n");
-  EXPECT_NE(expectMapError([&] { loadSbplEnvironment(dir + "/badcost.cfg"); }).find("badcost.cfg:12: cell (1, 1): cost '300'"), std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadSbplEnvironment(dir + "/badcost.cfg");
+            }).find("badcost.cfg:12: cell (1, 1): cost '300'"),
+            std::string::npos);
   writeFile(dir + "/label.cfg", "discretization(cells): 2 2\nobsthresh 254\n");
-  EXPECT_NE(expectMapError([&] { loadSbplEnvironment(dir + "/label.cfg"); }).find("label.cfg:2: expected 'obsthresh:' but found 'obsthresh'"), std::string::npos);
+  EXPECT_NE(expectMapError([&] {
+              loadSbplEnvironment(dir + "/label.cfg");
+            }).find("label.cfg:2: expected 'obsthresh:' but found 'obsthresh'"),
+            std::string::npos);
   writeFile(dir + "/extra.cfg", head + "0 1\n253 254 7\n");
-  EXPECT_NE(expectMapError([&] { loadSbplEnvironment(dir + "/extra.cfg"); }).find("unexpected '7'"), std::string::npos);
+  EXPECT_NE(expectMapError([&] { loadSbplEnvironment(dir + "/extra.cfg"); }).find("unexpected '7'"),
+            std::string::npos);
 }
 
 TEST(OccupancyTest, ConversionAndValidation) {
@@ -293,11 +341,22 @@ TEST(OccupancyTest, ConversionAndValidation) {
   EXPECT_EQ(m.at(2, 0), kUnknownCost);
   EXPECT_EQ(m.at(2, 1), occupancyToCost(10, c));
   auto err = [&](const std::function<void()>& f) { return expectMapError(f); };
-  EXPECT_NE(err([&] { gridMapFromOccupancy(3, 2, 0.05, 0, 0, 0, data, 5, c); }).find("data has 5 values"), std::string::npos);
-  EXPECT_NE(err([&] { gridMapFromOccupancy(0, 2, 0.05, 0, 0, 0, data, 0, c); }).find("not positive"), std::string::npos);
-  EXPECT_NE(err([&] { gridMapFromOccupancy(3, 2, NAN, 0, 0, 0, data, 6, c); }).find("resolution"), std::string::npos);
-  EXPECT_NE(err([&] { gridMapFromOccupancy(3, 2, 0.05, NAN, 0, 0, data, 6, c); }).find("origin is not finite"), std::string::npos);
-  EXPECT_NE(err([&] { gridMapFromOccupancy(3, 2, 0.05, 0, 0, 0, data, 6, c, 5); }).find("exceeds the limit"), std::string::npos);
+  EXPECT_NE(
+      err([&] { gridMapFromOccupancy(3, 2, 0.05, 0, 0, 0, data, 5, c); }).find("data has 5 values"),
+      std::string::npos);
+  EXPECT_NE(
+      err([&] { gridMapFromOccupancy(0, 2, 0.05, 0, 0, 0, data, 0, c); }).find("not positive"),
+      std::string::npos);
+  EXPECT_NE(err([&] { gridMapFromOccupancy(3, 2, NAN, 0, 0, 0, data, 6, c); }).find("resolution"),
+            std::string::npos);
+  EXPECT_NE(err([&] {
+              gridMapFromOccupancy(3, 2, 0.05, NAN, 0, 0, data, 6, c);
+            }).find("origin is not finite"),
+            std::string::npos);
+  EXPECT_NE(err([&] {
+              gridMapFromOccupancy(3, 2, 0.05, 0, 0, 0, data, 6, c, 5);
+            }).find("exceeds the limit"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -31,9 +31,11 @@ const char* kSmall =
     "resolution_m: 0.1\n"
     "numberofangles: 2\n"
     "totalnumberofprimitives: 2\n"
-    "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: 1\nintermediateposes: 2\n"
+    "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: 1\nintermediateposes: "
+    "2\n"
     "0 0 0\n0.1 0 0\n"
-    "primID: 0\nstartangle_c: 1\nendpose_c: -1 0 1\nadditionalactioncostmult: 2\nintermediateposes: 2\n"
+    "primID: 0\nstartangle_c: 1\nendpose_c: -1 0 1\nadditionalactioncostmult: "
+    "2\nintermediateposes: 2\n"
     "0 0 3.14159\n-0.1 0 3.14159\n";
 
 TEST(MprimTest, SharedFilesLoadWithTheirCounts) {
@@ -42,7 +44,9 @@ TEST(MprimTest, SharedFilesLoadWithTheirCounts) {
     const char* file;
     double res;
     std::size_t prims;
-  } cases[] = {{"pr2.mprim", 0.025, 112}, {"pr2_10cm.mprim", 0.1, 256}, {"unicycle_noturninplace.mprim", 0.025, 80}};
+  } cases[] = {{"pr2.mprim", 0.025, 112},
+               {"pr2_10cm.mprim", 0.1, 256},
+               {"unicycle_noturninplace.mprim", 0.025, 80}};
   for (const Case& c : cases) {
     const PrimitiveSet s = readMprimFile(data + "/sbpl/" + c.file, c.res);
     EXPECT_EQ(s.num_headings, 16) << c.file;
@@ -51,7 +55,8 @@ TEST(MprimTest, SharedFilesLoadWithTheirCounts) {
     for (int h = 0; h < 16; ++h) {
       const auto r = s.range(h);
       EXPECT_EQ(r.second - r.first, c.prims / 16) << c.file << " heading " << h;
-      for (std::size_t i = r.first; i < r.second; ++i) EXPECT_EQ(s.primitives[i].id, static_cast<int>(i - r.first));
+      for (std::size_t i = r.first; i < r.second; ++i)
+        EXPECT_EQ(s.primitives[i].id, static_cast<int>(i - r.first));
     }
   }
   const PrimitiveSet pr2 = readMprimFile(data + "/sbpl/pr2.mprim");
@@ -65,11 +70,14 @@ TEST(MprimTest, SharedFilesLoadWithTheirCounts) {
 
 TEST(MprimTest, NonUniformFormat) {
   std::ostringstream f;
-  f << "resolution_m: 0.1\nmin_turning_radius_m: 0.5\nnumberofangles: 2\nangle:0 0.0\nangle:1 3.14159265\n"
+  f << "resolution_m: 0.1\nmin_turning_radius_m: 0.5\nnumberofangles: 2\nangle:0 0.0\nangle:1 "
+       "3.14159265\n"
        "totalnumberofprimitives: 2\n"
-       "primID: 0\nstartangle_c: 0\nendpose_c: 2 0 0\nadditionalactioncostmult: 1\nturning_radius: 0.0\nintermediateposes: 3\n"
+       "primID: 0\nstartangle_c: 0\nendpose_c: 2 0 0\nadditionalactioncostmult: 1\nturning_radius: "
+       "0.0\nintermediateposes: 3\n"
        "0 0 0\n0.1 0 0\n0.2 0 0\n"
-       "primID: 0\nstartangle_c: 1\nendpose_c: 0 0 0\nadditionalactioncostmult: 1\nturning_radius: -0.7\nintermediateposes: 2\n"
+       "primID: 0\nstartangle_c: 1\nendpose_c: 0 0 0\nadditionalactioncostmult: 1\nturning_radius: "
+       "-0.7\nintermediateposes: 2\n"
        "0 0 3.14159265\n0 0 0.1\n";
   std::istringstream in(f.str());
   const PrimitiveSet s = readMprim(in, "nu.mprim", 0.1);
@@ -92,24 +100,52 @@ TEST(MprimTest, ValidationErrorsNameLineAndProblem) {
     EXPECT_NE(at, std::string::npos) << from;
     return t.replace(at, from.size(), to);
   };
-  EXPECT_NE(expectPrimError(kSmall, 0.025).find("t.mprim:1: resolution 0.1 in file != map 0.025"), std::string::npos);
+  EXPECT_NE(expectPrimError(kSmall, 0.025).find("t.mprim:1: resolution 0.1 in file != map 0.025"),
+            std::string::npos);
   // The end pose must match the last intermediate pose's discretisation.
-  EXPECT_NE(expectPrimError(replace("endpose_c: 1 0 0", "endpose_c: 2 0 0")).find("t.mprim:10: primID 0 (start heading 0): last intermediate pose 0.1 0 0 discretises to 1 0 0, not endpose_c 2 0 0"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("0.1 0 0\n", "0.1 0 3.1\n")).find("discretises to 1 0 1, not endpose_c 1 0 0"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("0 0 0\n0.1", "0.2 0 0\n0.1")).find("t.mprim:4: primID 0 (start heading 0): first intermediate pose 0.2 0 0 is not in the start cell"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("startangle_c: 1", "startangle_c: 2")).find("t.mprim:12: startangle_c 2 is not in 0..1"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("additionalactioncostmult: 2", "additionalactioncostmult: 0")).find("t.mprim:14: additionalactioncostmult 0 must be positive"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("numberofangles: 2", "numberofangle: 2")).find("t.mprim:2: expected 'numberofangles:' but found 'numberofangle:'"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("-0.1 0 3.14159", "-0.1 zero 3.14159")).find("t.mprim:17: expected an intermediate y (a number) but found 'zero'"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("totalnumberofprimitives: 2", "totalnumberofprimitives: 3")).find("file ends before primitive 3 of 3"), std::string::npos);
+  EXPECT_NE(expectPrimError(replace("endpose_c: 1 0 0", "endpose_c: 2 0 0"))
+                .find("t.mprim:10: primID 0 (start heading 0): last intermediate pose 0.1 0 0 "
+                      "discretises to 1 0 0, not endpose_c 2 0 0"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("0.1 0 0\n", "0.1 0 3.1\n"))
+                .find("discretises to 1 0 1, not endpose_c 1 0 0"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("0 0 0\n0.1", "0.2 0 0\n0.1"))
+                .find("t.mprim:4: primID 0 (start heading 0): first intermediate pose 0.2 0 0 is "
+                      "not in the start cell"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("startangle_c: 1", "startangle_c: 2"))
+                .find("t.mprim:12: startangle_c 2 is not in 0..1"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("additionalactioncostmult: 2", "additionalactioncostmult: 0"))
+                .find("t.mprim:14: additionalactioncostmult 0 must be positive"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("numberofangles: 2", "numberofangle: 2"))
+                .find("t.mprim:2: expected 'numberofangles:' but found 'numberofangle:'"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("-0.1 0 3.14159", "-0.1 zero 3.14159"))
+                .find("t.mprim:17: expected an intermediate y (a number) but found 'zero'"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("totalnumberofprimitives: 2", "totalnumberofprimitives: 3"))
+                .find("file ends before primitive 3 of 3"),
+            std::string::npos);
   const std::string both_heading_0 =
       "resolution_m: 0.1\nnumberofangles: 2\ntotalnumberofprimitives: 2\n"
-      "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: 1\nintermediateposes: 2\n0 0 0\n0.1 0 0\n"
-      "primID: 1\nstartangle_c: 0\nendpose_c: 2 0 0\nadditionalactioncostmult: 1\nintermediateposes: 2\n0 0 0\n0.2 0 0\n";
-  EXPECT_NE(expectPrimError(both_heading_0).find("heading 0 has 2 primitives; every heading needs the same number (2 / 2)"), std::string::npos);
-  EXPECT_NE(expectPrimError(s + "primID: 7\n").find("t.mprim:18: unexpected 'primID:' after the last primitive"), std::string::npos);
-  EXPECT_NE(expectPrimError(replace("intermediateposes: 2\n0 0 3", "intermediateposes: 0\n0 0 3")).find("intermediateposes 0 is not in 1..100000"), std::string::npos);
-  EXPECT_NE(expectPrimError("").find("expected 'resolution_m:' but found the end of the file"), std::string::npos);
+      "primID: 0\nstartangle_c: 0\nendpose_c: 1 0 0\nadditionalactioncostmult: "
+      "1\nintermediateposes: 2\n0 0 0\n0.1 0 0\n"
+      "primID: 1\nstartangle_c: 0\nendpose_c: 2 0 0\nadditionalactioncostmult: "
+      "1\nintermediateposes: 2\n0 0 0\n0.2 0 0\n";
+  EXPECT_NE(expectPrimError(both_heading_0)
+                .find("heading 0 has 2 primitives; every heading needs the same number (2 / 2)"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(s + "primID: 7\n")
+                .find("t.mprim:18: unexpected 'primID:' after the last primitive"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError(replace("intermediateposes: 2\n0 0 3", "intermediateposes: 0\n0 0 3"))
+                .find("intermediateposes 0 is not in 1..100000"),
+            std::string::npos);
+  EXPECT_NE(expectPrimError("").find("expected 'resolution_m:' but found the end of the file"),
+            std::string::npos);
   try {
     readMprimFile("/nonexistent/x.mprim");
     ADD_FAILURE();
@@ -128,7 +164,8 @@ void checkGeneratedSet(const PrimitiveSet& s, const PrimitiveGeneratorOptions& o
     ASSERT_EQ(r.second - r.first, per);
     // Headings are the directions of their lattice vectors: straight moves keep the heading.
     const MotionPrimitive& step = s.primitives[r.first];
-    EXPECT_NEAR(std::atan2(step.end_dy, step.end_dx), std::remainder(s.heading_angles[h], 2 * M_PI), 1e-9);
+    EXPECT_NEAR(std::atan2(step.end_dy, step.end_dx), std::remainder(s.heading_angles[h], 2 * M_PI),
+                1e-9);
     for (std::size_t i = r.first; i < r.second; ++i) {
       const MotionPrimitive& p = s.primitives[i];
       EXPECT_NEAR(p.poses.front().x, 0.0, 1e-12);
@@ -141,19 +178,24 @@ void checkGeneratedSet(const PrimitiveSet& s, const PrimitiveGeneratorOptions& o
       if (p.turning_radius != 0.0) {
         EXPECT_GE(std::fabs(p.turning_radius), o.turning_radius - 1e-9);
         // Signed as SBPL does: positive when the heading turns counter-clockwise.
-        const double turn = std::remainder(s.heading_angles[p.end_heading] - s.heading_angles[h], 2 * M_PI);
+        const double turn =
+            std::remainder(s.heading_angles[p.end_heading] - s.heading_angles[h], 2 * M_PI);
         EXPECT_GT(turn * p.turning_radius, 0.0);
         // Consecutive poses continue smoothly: the interpolated path never jumps.
         for (std::size_t k = 1; k < p.poses.size(); ++k) {
-          EXPECT_LE(std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y), 0.5 * o.resolution + 1e-9);
+          EXPECT_LE(std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y),
+                    0.5 * o.resolution + 1e-9);
         }
         // Its curvature never exceeds 1 / turning radius: heading change <= distance / R.
         for (std::size_t k = 1; k < p.poses.size(); ++k) {
-          const double d = std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
-          EXPECT_LE(angleDistance(p.poses[k].theta, p.poses[k - 1].theta), 1.01 * d / o.turning_radius + 1e-9);
+          const double d =
+              std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
+          EXPECT_LE(angleDistance(p.poses[k].theta, p.poses[k - 1].theta),
+                    1.01 * d / o.turning_radius + 1e-9);
         }
       } else {
-        EXPECT_TRUE(p.end_heading == h || (p.end_dx == 0 && p.end_dy == 0));  // straight or a turn in place
+        EXPECT_TRUE(p.end_heading == h ||
+                    (p.end_dx == 0 && p.end_dy == 0));  // straight or a turn in place
       }
     }
   }

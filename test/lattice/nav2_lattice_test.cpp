@@ -1,10 +1,10 @@
 // Nav2 lattice files: our fixture and (when present) Nav2's sample files load with the right
 // counts; corrupted files are refused with errors that name the field and the value; generated
 // sets written as .json and .mprim read back the same; backward twins of a Nav2 set.
+#include <sys/stat.h>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <sys/stat.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -17,8 +17,10 @@ namespace amha {
 namespace lattice {
 namespace {
 
-const std::string kFixture = "test/lattice/data/nav2_diff_8_headings.json";  // tests run from the source tree
-const std::string kSamples = "/work/smac-bench/src/nav2_smac_planner/lattice_primitives/sample_primitives";
+const std::string kFixture =
+    "test/lattice/data/nav2_diff_8_headings.json";  // tests run from the source tree
+const std::string kSamples =
+    "/work/smac-bench/src/nav2_smac_planner/lattice_primitives/sample_primitives";
 
 bool exists(const std::string& path) {
   struct stat st;
@@ -42,7 +44,9 @@ std::string errorFor(const std::string& text, double map_resolution = 0.0) {
   ADD_FAILURE() << "no error for a corrupted file";
   return "";
 }
-std::string errorFor(const nlohmann::json& doc, double map_resolution = 0.0) { return errorFor(doc.dump(), map_resolution); }
+std::string errorFor(const nlohmann::json& doc, double map_resolution = 0.0) {
+  return errorFor(doc.dump(), map_resolution);
+}
 
 TEST(Nav2Lattice, FixtureLoads) {
   const PrimitiveSet s = readNav2LatticeFile(kFixture, 0.1);
@@ -105,7 +109,9 @@ TEST(Nav2Lattice, NavSampleFilesLoadWithTheirCounts) {
     readNav2LatticeFile(kSamples + "/test/output.json");
     ADD_FAILURE();
   } catch (const LatticeError& e) {
-    EXPECT_NE(std::string(e.what()).find("'end_angle_index' 15 is not an integer in 0..14"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'end_angle_index' 15 is not an integer in 0..14"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -119,13 +125,18 @@ TEST(Nav2Lattice, CorruptedFilesGiveNamedErrors) {
   auto expectError = [](const std::string& error, const std::string& part) {
     EXPECT_NE(error.find(part), std::string::npos) << "error: " << error << "\nexpected: " << part;
   };
-  expectError(errorFor(good, 0.05), "t.json: lattice_metadata: 'grid_resolution' 0.1 does not match the map's resolution 0.05");
-  expectError(errorFor(std::string("{\"lattice_metadata\": {,}")), "t.json: not valid JSON: parse error at line 1, column 23");
-  expectError(errorFor(std::string("[1, 2]")), "t.json: the document: must be a JSON object, not [1,2]");
+  expectError(
+      errorFor(good, 0.05),
+      "t.json: lattice_metadata: 'grid_resolution' 0.1 does not match the map's resolution 0.05");
+  expectError(errorFor(std::string("{\"lattice_metadata\": {,}")),
+              "t.json: not valid JSON: parse error at line 1, column 23");
+  expectError(errorFor(std::string("[1, 2]")),
+              "t.json: the document: must be a JSON object, not [1,2]");
   // A number no double holds (found by the fuzzer: the JSON library throws out_of_range).
   expectError(errorFor(std::string("{\"lattice_metadata\": {\"turning_radius\": 2.35e2345}}")),
               "t.json: not valid JSON: number overflow parsing '2.35e2345'");
-  expectError(errorFor(changed([](auto& d) { d.erase("primitives"); })), "t.json: the document: missing 'primitives'");
+  expectError(errorFor(changed([](auto& d) { d.erase("primitives"); })),
+              "t.json: the document: missing 'primitives'");
   expectError(errorFor(changed([](auto& d) { d["lattice_metadata"].erase("heading_angles"); })),
               "lattice_metadata: missing 'heading_angles'");
   expectError(errorFor(changed([](auto& d) { d["lattice_metadata"]["motion_model"] = "car"; })),
@@ -138,25 +149,35 @@ TEST(Nav2Lattice, CorruptedFilesGiveNamedErrors) {
               "'heading_angles'[3] 0.5 is not greater than the angle before it");
   expectError(errorFor(changed([](auto& d) { d["lattice_metadata"]["heading_angles"][7] = 7.0; })),
               "'heading_angles'[7] 7 is not in [0, 2 pi)");
-  expectError(errorFor(changed([](auto& d) { d["lattice_metadata"]["number_of_trajectories"] = 45; })),
-              "'primitives' has 44 primitives, but lattice_metadata's number_of_trajectories says 45");
-  expectError(errorFor(changed([](auto& d) { d["primitives"][3]["start_angle_index"] = 8; })),
-              "t.json: primitives[3] (trajectory_id 3): 'start_angle_index' 8 is not an integer in 0..7");
-  expectError(errorFor(changed([](auto& d) { d["primitives"][3]["end_angle_index"] = "one"; })),
-              "primitives[3] (trajectory_id 3): 'end_angle_index' must be an integer in 0..7, not \"one\"");
+  expectError(
+      errorFor(changed([](auto& d) { d["lattice_metadata"]["number_of_trajectories"] = 45; })),
+      "'primitives' has 44 primitives, but lattice_metadata's number_of_trajectories says 45");
+  expectError(
+      errorFor(changed([](auto& d) { d["primitives"][3]["start_angle_index"] = 8; })),
+      "t.json: primitives[3] (trajectory_id 3): 'start_angle_index' 8 is not an integer in 0..7");
+  expectError(
+      errorFor(changed([](auto& d) { d["primitives"][3]["end_angle_index"] = "one"; })),
+      "primitives[3] (trajectory_id 3): 'end_angle_index' must be an integer in 0..7, not \"one\"");
   expectError(errorFor(changed([](auto& d) { d["primitives"][5].erase("left_turn"); })),
               "primitives[5] (trajectory_id 5): missing 'left_turn' (true or false)");
   expectError(errorFor(changed([](auto& d) { d["primitives"][5]["arc_length"] = -0.2; })),
               "'arc_length' -0.2 is not a length >= 0 in metres");
-  expectError(errorFor(changed([](auto& d) { d["primitives"][2]["poses"][1] = {0.1, "y", 0.2}; })),
-              "primitives[2] (trajectory_id 2): 'poses'[1] must be [x, y, yaw] (3 finite numbers), not [0.1,\"y\",0.2]");
-  expectError(errorFor(changed([](auto& d) { d["primitives"][2]["poses"] = nlohmann::json::array(); })),
-              "'poses' has 0 poses");
+  expectError(errorFor(changed([](auto& d) {
+                d["primitives"][2]["poses"][1] = {0.1, "y", 0.2};
+              })),
+              "primitives[2] (trajectory_id 2): 'poses'[1] must be [x, y, yaw] (3 finite numbers), "
+              "not [0.1,\"y\",0.2]");
+  expectError(
+      errorFor(changed([](auto& d) { d["primitives"][2]["poses"] = nlohmann::json::array(); })),
+      "'poses' has 0 poses");
   expectError(errorFor(changed([](auto& d) { d["primitives"][2]["poses"].back()[0] = 0.33; })),
-              "primitives[2] (trajectory_id 2): the last pose [0.33,0.1,0.7853981633974483] is not a cell centre at end "
+              "primitives[2] (trajectory_id 2): the last pose [0.33,0.1,0.7853981633974483] is not "
+              "a cell centre at end "
               "heading 1");
-  expectError(errorFor(changed([](auto& d) { d["primitives"][2]["end_angle_index"] = 2; })), "is not a cell centre at end heading 2");
-  expectError(errorFor(changed([](auto& d) { d["primitives"][2]["poses"].back()[0] = 300.0; })), "cells long (at most 1000)");
+  expectError(errorFor(changed([](auto& d) { d["primitives"][2]["end_angle_index"] = 2; })),
+              "is not a cell centre at end heading 2");
+  expectError(errorFor(changed([](auto& d) { d["primitives"][2]["poses"].back()[0] = 300.0; })),
+              "cells long (at most 1000)");
   // Every primitive of heading 5 moved to heading 4: heading 5 has none.
   expectError(errorFor(changed([](auto& d) {
                 for (auto& p : d["primitives"]) {
@@ -168,16 +189,19 @@ TEST(Nav2Lattice, CorruptedFilesGiveNamedErrors) {
     readNav2LatticeFile("/nonexistent/x.json");
     ADD_FAILURE();
   } catch (const LatticeError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.json: cannot open the file"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.json: cannot open the file"),
+              std::string::npos);
   }
 }
 
 // .mprim files round poses to 6 decimals and do not keep arc and straight lengths (the reader
 // estimates them from the poses): length_tolerance says how closely they must agree.
-void expectSameMotions(const PrimitiveSet& a, const PrimitiveSet& b, double pose_tolerance, double length_tolerance = 1e-5) {
+void expectSameMotions(const PrimitiveSet& a, const PrimitiveSet& b, double pose_tolerance,
+                       double length_tolerance = 1e-5) {
   ASSERT_EQ(a.num_headings, b.num_headings);
   ASSERT_EQ(a.primitives.size(), b.primitives.size());
-  for (int h = 0; h < a.num_headings; ++h) EXPECT_NEAR(a.heading_angles[h], b.heading_angles[h], 1e-9);
+  for (int h = 0; h < a.num_headings; ++h)
+    EXPECT_NEAR(a.heading_angles[h], b.heading_angles[h], 1e-9);
   for (std::size_t i = 0; i < a.primitives.size(); ++i) {
     const MotionPrimitive &p = a.primitives[i], &q = b.primitives[i];
     EXPECT_EQ(p.start_heading, q.start_heading);
@@ -199,7 +223,8 @@ void expectSameMotions(const PrimitiveSet& a, const PrimitiveSet& b, double pose
 
 TEST(Nav2Lattice, GeneratedSetsReadBackFromBothFormats) {
   const std::string dir = test::tempDir();
-  for (MotionModel model : {MotionModel::kAckermann, MotionModel::kDifferential, MotionModel::kOmni}) {
+  for (MotionModel model :
+       {MotionModel::kAckermann, MotionModel::kDifferential, MotionModel::kOmni}) {
     PrimitiveGeneratorOptions o;
     o.motion_model = model;
     o.resolution = 0.1;
@@ -243,7 +268,9 @@ TEST(Nav2Lattice, PlannerUsesAJsonFileAndChecksItsResolution) {
     ADD_FAILURE();
   } catch (const LatticeError& e) {
     EXPECT_EQ(e.kind(), LatticeError::Kind::kPrimitives);
-    EXPECT_NE(std::string(e.what()).find("does not match the map's resolution 0.05"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("does not match the map's resolution 0.05"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -28,9 +28,12 @@ struct Case {
 };
 
 const Case kCases[] = {
-    {0.05, 16, 0.5, MotionModel::kAckermann, false}, {0.05, 16, 0.5, MotionModel::kDifferential, true},
-    {0.1, 8, 0.3, MotionModel::kOmni, false},        {0.025, 32, 0.4, MotionModel::kAckermann, true},
-    {0.05, 24, 1.0, MotionModel::kDifferential, false}, {0.1, 16, 0.25, MotionModel::kAckermann, false},
+    {0.05, 16, 0.5, MotionModel::kAckermann, false},
+    {0.05, 16, 0.5, MotionModel::kDifferential, true},
+    {0.1, 8, 0.3, MotionModel::kOmni, false},
+    {0.025, 32, 0.4, MotionModel::kAckermann, true},
+    {0.05, 24, 1.0, MotionModel::kDifferential, false},
+    {0.1, 16, 0.25, MotionModel::kAckermann, false},
 };
 
 PrimitiveGeneratorOptions optionsFor(const Case& c) {
@@ -79,12 +82,14 @@ TEST(NearMinimalGenerator, ExactEndsBoundedCurvatureEveryHeading) {
           // as on a circle of radius r_min through both, 2 asin(d / 2 r_min) (turns on the spot
           // excepted), and three consecutive points lie on a circle of radius >= r_min.
           if (moves(p)) {
-            EXPECT_LE(angleDistance(a.theta, b.theta), 2.0 * std::asin(std::min(1.0, d / (2.0 * c.radius))) * (1 + 1e-6) + 1e-9);
+            EXPECT_LE(angleDistance(a.theta, b.theta),
+                      2.0 * std::asin(std::min(1.0, d / (2.0 * c.radius))) * (1 + 1e-6) + 1e-9);
           }
           if (k >= 2 && moves(p)) {
             const Pose2D& z = p.poses[k - 2];
             const double cross = (a.x - z.x) * (b.y - z.y) - (a.y - z.y) * (b.x - z.x);
-            const double abc = std::hypot(a.x - z.x, a.y - z.y) * std::hypot(b.x - a.x, b.y - a.y) * std::hypot(b.x - z.x, b.y - z.y);
+            const double abc = std::hypot(a.x - z.x, a.y - z.y) * std::hypot(b.x - a.x, b.y - a.y) *
+                               std::hypot(b.x - z.x, b.y - z.y);
             if (abc > 0.0) {
               EXPECT_LE(2.0 * std::fabs(cross) / abc, 1.001 / c.radius) << "primitive " << i;
             }
@@ -128,7 +133,9 @@ TEST(NearMinimalGenerator, ClosedUnderTheLatticeSymmetries) {
     const PrimitiveSet s = generateNearMinimalPrimitives(optionsFor(c));
     std::map<std::tuple<int, int, int, int, bool>, const MotionPrimitive*> index;
     for (const MotionPrimitive& p : s.primitives) {
-      EXPECT_TRUE(index.insert({{p.start_heading, p.end_dx, p.end_dy, p.end_heading, p.reverse}, &p}).second)
+      EXPECT_TRUE(
+          index.insert({{p.start_heading, p.end_dx, p.end_dy, p.end_heading, p.reverse}, &p})
+              .second)
           << "two primitives from heading " << p.start_heading << " to the same state";
     }
     for (int reflect = 0; reflect < 2; ++reflect) {
@@ -140,8 +147,10 @@ TEST(NearMinimalGenerator, ClosedUnderTheLatticeSymmetries) {
           g.apply(sx, sy, sth);
           g.apply(ex, ey, eth);
           const int h0 = s.headingIndex(sth), h1 = s.headingIndex(eth);
-          const auto it = index.find({h0, static_cast<int>(std::lround(ex)), static_cast<int>(std::lround(ey)), h1, p.reverse});
-          ASSERT_NE(it, index.end()) << "the image of a primitive of heading " << p.start_heading << " is missing";
+          const auto it = index.find({h0, static_cast<int>(std::lround(ex)),
+                                      static_cast<int>(std::lround(ey)), h1, p.reverse});
+          ASSERT_NE(it, index.end())
+              << "the image of a primitive of heading " << p.start_heading << " is missing";
           const MotionPrimitive& q = *it->second;
           ASSERT_EQ(q.poses.size(), p.poses.size());
           for (std::size_t k = 0; k < p.poses.size(); ++k) {
@@ -159,8 +168,8 @@ TEST(NearMinimalGenerator, ClosedUnderTheLatticeSymmetries) {
 
 // The cheapest sequence of the given primitives from (0, 0, h0) to (x, y, h1), if it costs at
 // most `bound` (A* with the straight-line distance; lengths in metres).
-double composedLength(const PrimitiveSet& s, const std::vector<const MotionPrimitive*>& usable, int h0, int x, int y,
-                      int h1, double bound) {
+double composedLength(const PrimitiveSet& s, const std::vector<const MotionPrimitive*>& usable,
+                      int h0, int x, int y, int h1, double bound) {
   std::vector<std::vector<const MotionPrimitive*>> from(s.num_headings);
   for (const MotionPrimitive* p : usable) from[p->start_heading].push_back(p);
   using State = std::tuple<int, int, int>;
@@ -206,9 +215,11 @@ TEST(NearMinimalGenerator, NoPrimitiveIsACompositionOfShorterOnes) {
         if (length(*q) < length(*p) - 1e-9) shorter.push_back(q);
       }
       const double bound = (1.0 + o.tolerance) * length(*p);
-      EXPECT_GT(composedLength(s, shorter, p->start_heading, p->end_dx, p->end_dy, p->end_heading, bound), bound)
-          << "the primitive of heading " << p->start_heading << " to (" << p->end_dx << ", " << p->end_dy << ", "
-          << p->end_heading << ") is a composition of shorter ones";
+      EXPECT_GT(
+          composedLength(s, shorter, p->start_heading, p->end_dx, p->end_dy, p->end_heading, bound),
+          bound)
+          << "the primitive of heading " << p->start_heading << " to (" << p->end_dx << ", "
+          << p->end_dy << ", " << p->end_heading << ") is a composition of shorter ones";
     }
   }
 }
@@ -222,7 +233,8 @@ TEST(NearMinimalGenerator, MotionModelsAndBackwardTwins) {
   o.motion_model = MotionModel::kDifferential;
   const PrimitiveSet diff = generateNearMinimalPrimitives(o);
   EXPECT_EQ(diff.motion_model, "diff");
-  EXPECT_EQ(diff.primitives.size(), ackermann.primitives.size() + 2 * 16);  // turns on the spot to both sides
+  EXPECT_EQ(diff.primitives.size(),
+            ackermann.primitives.size() + 2 * 16);  // turns on the spot to both sides
   o.turn_in_place = false;
   EXPECT_EQ(generateNearMinimalPrimitives(o).primitives.size(), ackermann.primitives.size());
   o.turn_in_place = true;
@@ -294,17 +306,23 @@ TEST(NearMinimalGenerator, OptimaNeverWorseThanTheLegacySetsAndSometimesBetter) 
     LatticePlanner fresh(map, c), legacy(map, legacy_config);
     const LatticeGraph graph(map, c);
     std::mt19937 rng(seed);
-    std::uniform_int_distribution<int> rx(0, map->width - 1), ry(0, map->height - 1), rh(0, graph.numHeadings() - 1);
+    std::uniform_int_distribution<int> rx(0, map->width - 1), ry(0, map->height - 1),
+        rh(0, graph.numHeadings() - 1);
     for (int q = 0, tries = 0; q < 4 && tries < 2000; ++tries) {
       const int sx = rx(rng), sy = ry(rng), sh = rh(rng), gx = rx(rng), gy = ry(rng), gh = rh(rng);
-      if (!graph.stateValid(sx, sy, sh) || !graph.stateValid(gx, gy, gh) || std::hypot(gx - sx, gy - sy) < 30) continue;
+      if (!graph.stateValid(sx, sy, sh) || !graph.stateValid(gx, gy, gh) ||
+          std::hypot(gx - sx, gy - sy) < 30)
+        continue;
       ++q;
       const Pose2D start = graph.stateToPose(sx, sy, sh), goal = graph.stateToPose(gx, gy, gh);
-      const PlanResult a = fresh.plan(start, goal, defaultConfig(Algorithm::kAStar), SearchLimits());
-      const PlanResult b = legacy.plan(start, goal, defaultConfig(Algorithm::kAStar), SearchLimits());
+      const PlanResult a =
+          fresh.plan(start, goal, defaultConfig(Algorithm::kAStar), SearchLimits());
+      const PlanResult b =
+          legacy.plan(start, goal, defaultConfig(Algorithm::kAStar), SearchLimits());
       ASSERT_NE(a.search.status, SearchStatus::kTimeLimit);
       if (b.solutions.empty()) continue;  // legacy finds no path: nothing to compare
-      ASSERT_FALSE(a.solutions.empty()) << "seed " << seed << ": the legacy set finds a path, the new one none";
+      ASSERT_FALSE(a.solutions.empty())
+          << "seed " << seed << ": the legacy set finds a path, the new one none";
       // Each of the legacy path's primitives may cost a unit more when composed of shorter ones
       // (costs are rounded up per primitive), and two for the cell-cost penalty's rounding.
       const Solution& x = a.solutions.back().search;

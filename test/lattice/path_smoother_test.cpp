@@ -32,7 +32,8 @@ TEST(DubinsPathTest, ReachesTheGoalWithinTheCurvatureBound) {
   for (int k = 0; k < 3000; ++k) {
     // Every fifth pair close together, where the CCC words win.
     const double scale = k % 5 == 0 ? 0.3 : 1.0;
-    const Pose2D from{u(rng), u(rng), a(rng)}, to{from.x + scale * u(rng), from.y + scale * u(rng), a(rng)};
+    const Pose2D from{u(rng), u(rng), a(rng)},
+        to{from.x + scale * u(rng), from.y + scale * u(rng), a(rng)};
     const double radius = r(rng);
     const DubinsPath p = shortestDubinsPath(from, to, radius);
     ccc += p.turn[1] != 0;
@@ -42,12 +43,16 @@ TEST(DubinsPathTest, ReachesTheGoalWithinTheCurvatureBound) {
     ASSERT_NEAR(std::remainder(end.theta - to.theta, 2.0 * M_PI), 0.0, 1e-6) << k;
     ASSERT_GE(p.totalLength() + 1e-9, std::hypot(to.x - from.x, to.y - from.y)) << k;
     // No word of the six is longer than going round: a circle plus the distance plus a circle.
-    ASSERT_LE(p.totalLength(), std::hypot(to.x - from.x, to.y - from.y) + 4.0 * M_PI * radius + 1e-9) << k;
+    ASSERT_LE(p.totalLength(),
+              std::hypot(to.x - from.x, to.y - from.y) + 4.0 * M_PI * radius + 1e-9)
+        << k;
     sampleDubinsPath(p, 0.05, samples);
     ASSERT_GE(samples.size(), 2u);
     for (std::size_t i = 1; i < samples.size(); ++i) {
-      ASSERT_LE(std::hypot(samples[i].x - samples[i - 1].x, samples[i].y - samples[i - 1].y), 0.05 + 1e-9);
-      ASSERT_LE(stepCurvature(samples[i - 1], samples[i]), (1.0 + 1e-9) / radius) << k << " step " << i;
+      ASSERT_LE(std::hypot(samples[i].x - samples[i - 1].x, samples[i].y - samples[i - 1].y),
+                0.05 + 1e-9);
+      ASSERT_LE(stepCurvature(samples[i - 1], samples[i]), (1.0 + 1e-9) / radius)
+          << k << " step " << i;
     }
   }
   EXPECT_GT(ccc, 50) << "the random pairs should exercise the CCC words";
@@ -96,17 +101,22 @@ std::vector<Model> models() {
 /// Checks one smoothed path against its lattice path; returns "" or what is wrong.
 /// Curvature and heading continuity are checked on shortcuts, and on kept motions too when
 /// `kept_too` (generated primitives: exact arcs and lines; a file's poses are its own, rounded).
-std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother, const std::vector<Pose2D>& raw,
-                          Cost raw_cost, const SmoothedPath& s, bool kept_too = true) {
-  if (s.poses.front().x != raw.front().x || s.poses.front().y != raw.front().y || s.poses.front().theta != raw.front().theta) {
+std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother,
+                          const std::vector<Pose2D>& raw, Cost raw_cost, const SmoothedPath& s,
+                          bool kept_too = true) {
+  if (s.poses.front().x != raw.front().x || s.poses.front().y != raw.front().y ||
+      s.poses.front().theta != raw.front().theta) {
     return "start pose changed";
   }
-  if (s.poses.back().x != raw.back().x || s.poses.back().y != raw.back().y || s.poses.back().theta != raw.back().theta) {
+  if (s.poses.back().x != raw.back().x || s.poses.back().y != raw.back().y ||
+      s.poses.back().theta != raw.back().theta) {
     return "goal pose changed";
   }
   // The same poses may be cheaper as other motions (short straight moves instead of a long one
   // whose worst cell is costlier): never costlier.
-  if (s.lattice_cost > raw_cost) return "lattice cost " + std::to_string(s.lattice_cost) + " > the search's " + std::to_string(raw_cost);
+  if (s.lattice_cost > raw_cost)
+    return "lattice cost " + std::to_string(s.lattice_cost) + " > the search's " +
+           std::to_string(raw_cost);
   if (s.cost > s.lattice_cost) return "costs more than the lattice path";
   const std::string v = test::validateSmoothedPath(test::modelFor(g), s, longestPrimitiveLength(g));
   if (!v.empty()) return v;
@@ -126,12 +136,15 @@ std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother, c
         std::string d;
         for (std::size_t q = (k > 3 ? k - 3 : 0); q < std::min(s.poses.size(), k + 4); ++q) {
           char buf[200];
-          std::snprintf(buf, sizeof buf, "\n  %zu: %.6f %.6f %.6f", q, s.poses[q].x, s.poses[q].y, s.poses[q].theta);
+          std::snprintf(buf, sizeof buf, "\n  %zu: %.6f %.6f %.6f", q, s.poses[q].x, s.poses[q].y,
+                        s.poses[q].theta);
           d += buf;
         }
         char buf[200];
-        std::snprintf(buf, sizeof buf, "\n piece [%zu,%zu] shortcut %d backward %d", p.first, p.last, p.shortcut, p.backward);
-        return "curvature " + std::to_string(stepCurvature(a, b)) + " at pose " + std::to_string(k) + d + buf;
+        std::snprintf(buf, sizeof buf, "\n piece [%zu,%zu] shortcut %d backward %d", p.first,
+                      p.last, p.shortcut, p.backward);
+        return "curvature " + std::to_string(stepCurvature(a, b)) + " at pose " +
+               std::to_string(k) + d + buf;
       }
       // Heading continuous along the motion: the direction of each step differs from the
       // heading at either end by no more than the curvature bound lets it turn within the step
@@ -140,7 +153,8 @@ std::string checkSmoothed(const LatticeGraph& g, const PathSmoother& smoother, c
       const double off_a = std::fabs(std::remainder(along - a.theta, 2.0 * M_PI));
       const double off_b = std::fabs(std::remainder(along - b.theta, 2.0 * M_PI));
       if (std::max(off_a, off_b) > 1.01 * kmax * chord + 1e-6) {
-        return "step " + std::to_string(k) + " does not run along its headings (" + (p.shortcut ? "shortcut" : "kept") + ")";
+        return "step " + std::to_string(k) + " does not run along its headings (" +
+               (p.shortcut ? "shortcut" : "kept") + ")";
       }
     }
   }
@@ -165,7 +179,8 @@ TEST(PathSmootherTest, ShortcutTestIsTheLatticeEdgeTest) {
           const MotionPrimitive& p = g.primitives().primitives[a->primitive];
           const Cost expected = g.edgeCost(x, y, *a);
           ASSERT_EQ(smoother.motionCost(x, y, p.poses, p.cost_multiplier), expected)
-              << model.name << " seed " << seed << " state " << x << "," << y << "," << h << " primitive " << a->primitive;
+              << model.name << " seed " << seed << " state " << x << "," << y << "," << h
+              << " primitive " << a->primitive;
           ++compared;
           invalid += expected == kInvalidEdge;
         }
@@ -178,7 +193,8 @@ TEST(PathSmootherTest, ShortcutTestIsTheLatticeEdgeTest) {
 }
 
 TEST(PathSmootherTest, RandomMapsRobotsAndAlgorithmsKeepEveryGuarantee) {
-  const Algorithm algorithms[] = {Algorithm::kAStar, Algorithm::kWeightedAStar, Algorithm::kAmhaStar, Algorithm::kAraStar};
+  const Algorithm algorithms[] = {Algorithm::kAStar, Algorithm::kWeightedAStar,
+                                  Algorithm::kAmhaStar, Algorithm::kAraStar};
   int paths = 0, shortened = 0, shortcuts = 0;
   for (const Model& model : models()) {
     for (unsigned seed = 1; seed <= 6; ++seed) {
@@ -191,20 +207,27 @@ TEST(PathSmootherTest, RandomMapsRobotsAndAlgorithmsKeepEveryGuarantee) {
       const PathSmoother smoother(g);
       std::mt19937 rng(seed);
       for (int q = 0, found = 0; q < 40 && found < 3; ++q) {
-        const int sx = static_cast<int>(rng() % g.width()), sy = static_cast<int>(rng() % g.height());
-        const int gx = static_cast<int>(rng() % g.width()), gy = static_cast<int>(rng() % g.height());
-        const int sh = static_cast<int>(rng() % g.numHeadings()), gh = static_cast<int>(rng() % g.numHeadings());
-        if (!g.stateValid(sx, sy, sh) || !g.stateValid(gx, gy, gh) || std::hypot(gx - sx, gy - sy) < 20) continue;
+        const int sx = static_cast<int>(rng() % g.width()),
+                  sy = static_cast<int>(rng() % g.height());
+        const int gx = static_cast<int>(rng() % g.width()),
+                  gy = static_cast<int>(rng() % g.height());
+        const int sh = static_cast<int>(rng() % g.numHeadings()),
+                  gh = static_cast<int>(rng() % g.numHeadings());
+        if (!g.stateValid(sx, sy, sh) || !g.stateValid(gx, gy, gh) ||
+            std::hypot(gx - sx, gy - sy) < 20)
+          continue;
         PlannerConfig pc = defaultConfig(algorithms[(seed + q) % 4]);
         SearchLimits limits;
         limits.time_limit_s = 2.0;
-        const PlanResult r = planner.plan(g.stateToPose(sx, sy, sh), g.stateToPose(gx, gy, gh), pc, limits);
+        const PlanResult r =
+            planner.plan(g.stateToPose(sx, sy, sh), g.stateToPose(gx, gy, gh), pc, limits);
         if (r.solutions.empty()) continue;
         ++found;
         for (const LatticeSolution& sol : r.solutions) {
           const SmoothedPath s = smoother.smooth(sol.poses);
           const std::string why = checkSmoothed(g, smoother, sol.poses, sol.search.cost, s);
-          ASSERT_EQ(why, "") << model.name << " seed " << seed << " query " << q << " " << algorithmName(pc.algorithm);
+          ASSERT_EQ(why, "") << model.name << " seed " << seed << " query " << q << " "
+                             << algorithmName(pc.algorithm);
           ++paths;
           shortened += s.cost < s.lattice_cost;
           shortcuts += static_cast<int>(s.shortcuts);
@@ -238,11 +261,13 @@ TEST(PathSmootherTest, StreamPublishesNoCostlierPathAndValidBounds) {
     for (int q = 0; q < 30; ++q) {
       const int sx = static_cast<int>(rng() % g.width()), sy = static_cast<int>(rng() % g.height());
       const int gx = static_cast<int>(rng() % g.width()), gy = static_cast<int>(rng() % g.height());
-      if (!g.stateValid(sx, sy, 0) || !g.stateValid(gx, gy, 4) || std::hypot(gx - sx, gy - sy) < 30) continue;
+      if (!g.stateValid(sx, sy, 0) || !g.stateValid(gx, gy, 4) || std::hypot(gx - sx, gy - sy) < 30)
+        continue;
       SearchLimits limits;
       limits.time_limit_s = 2.0;
       const Algorithm alg = seed % 3 == 0 ? Algorithm::kAraStar : Algorithm::kAmhaStar;
-      const PlanResult r = planner.plan(g.stateToPose(sx, sy, 0), g.stateToPose(gx, gy, 4), defaultConfig(alg), limits);
+      const PlanResult r = planner.plan(g.stateToPose(sx, sy, 0), g.stateToPose(gx, gy, 4),
+                                        defaultConfig(alg), limits);
       SmoothedStream stream(smoother);
       const LatticeSolution* previous = nullptr;
       LatticeSolution last;
@@ -280,16 +305,19 @@ TEST(PathSmootherTest, StreamPublishesNoCostlierPathAndValidBounds) {
     }
   }
   EXPECT_GT(steps, 100);
-  std::printf("%d streamed solutions, %d republished an earlier smoothed path\n", steps, republished);
+  std::printf("%d streamed solutions, %d republished an earlier smoothed path\n", steps,
+              republished);
 }
 
 /// The poses of the motions `primitives` (indices) driven one after the other from (x, y, h).
-std::vector<Pose2D> posesOf(const LatticeGraph& g, int x, int y, int h, const std::vector<int>& primitives) {
+std::vector<Pose2D> posesOf(const LatticeGraph& g, int x, int y, int h,
+                            const std::vector<int>& primitives) {
   std::vector<Pose2D> poses{g.stateToPose(x, y, h)};
   for (int i : primitives) {
     const MotionPrimitive& p = g.primitives().primitives[i];
     EXPECT_EQ(p.start_heading, h);
-    for (std::size_t k = 1; k < p.poses.size(); ++k) poses.push_back(g.cellPoseToMap(x, y, p.poses[k]));
+    for (std::size_t k = 1; k < p.poses.size(); ++k)
+      poses.push_back(g.cellPoseToMap(x, y, p.poses[k]));
     x += p.end_dx;
     y += p.end_dy;
     h = p.end_heading;
@@ -302,7 +330,9 @@ int primitiveOf(const LatticeGraph& g, int h, int e, bool moves, int dx = 0) {
   const auto range = g.primitives().range(h);
   for (std::size_t i = range.first; i < range.second; ++i) {
     const MotionPrimitive& p = g.primitives().primitives[i];
-    if (p.end_heading == e && (p.end_dx != 0 || p.end_dy != 0) == moves && (dx == 0 || p.end_dx == dx)) return static_cast<int>(i);
+    if (p.end_heading == e && (p.end_dx != 0 || p.end_dy != 0) == moves &&
+        (dx == 0 || p.end_dx == dx))
+      return static_cast<int>(i);
   }
   ADD_FAILURE() << "no primitive " << h << " -> " << e;
   return 0;
@@ -336,7 +366,8 @@ TEST(PathSmootherTest, StreamRepublishesAnEarlierSmoothedPathThatCostsLess) {
   for (int x = 5; x < gx; ++x) tip_then_straight.push_back(primitiveOf(g, 0, 0, true, 1));
   const std::vector<Pose2D> p2 = posesOf(g, 5, 20, 0, tip_then_straight);
   const SmoothedPath s1 = smoother.smooth(p1), s2 = smoother.smooth(p2);
-  ASSERT_LT(s2.lattice_cost, s1.lattice_cost) << "the setting needs solution 2 cheaper as a lattice path";
+  ASSERT_LT(s2.lattice_cost, s1.lattice_cost)
+      << "the setting needs solution 2 cheaper as a lattice path";
   ASSERT_LT(s1.cost, s2.cost) << "and solution 1 cheaper smoothed";
 
   LatticeSolution a, b;
@@ -361,7 +392,9 @@ TEST(PathSmootherTest, StreamRepublishesAnEarlierSmoothedPathThatCostsLess) {
   EXPECT_EQ(step.published.search.nominal_bound, 1.5);
   // cost_1' <= cost_2' <= cost_2 <= 1.2 x optimum, so 1.2 x cost_1' / cost_2 bounds it.
   EXPECT_NEAR(step.published.search.certified_bound,
-              std::min(first_certified, std::max(1.0, 1.2 * static_cast<double>(s1.cost) / static_cast<double>(s2.lattice_cost))), 1e-12);
+              std::min(first_certified, std::max(1.0, 1.2 * static_cast<double>(s1.cost) /
+                                                          static_cast<double>(s2.lattice_cost))),
+              1e-12);
 }
 
 TEST(PathSmootherTest, SmoothsTheBundledMapWithinTheGuarantees) {
@@ -371,7 +404,8 @@ TEST(PathSmootherTest, SmoothsTheBundledMapWithinTheGuarantees) {
   c.robot.radius = 0.2;
   c.motion.turning_radius = 0.5;
   OccupancyConversion conv;
-  auto map = std::make_shared<GridMap>(loadMapServerMap(data + "/maps/ros/willow_garage/willow-2010-02-18-0.10.yaml", conv));
+  auto map = std::make_shared<GridMap>(
+      loadMapServerMap(data + "/maps/ros/willow_garage/willow-2010-02-18-0.10.yaml", conv));
   LatticePlanner planner(map, c);
   const PathSmoother smoother(planner.graph());
   const Pose2D queries[][2] = {{{17, 55, 0}, {26, 6, 1.57}}, {{5.2, 21.6, 1.57}, {40, 40, 0}}};
@@ -408,8 +442,11 @@ TEST(PathSmootherTest, SbplPrimitiveFilesKeepEveryGuarantee) {
     for (int q = 0, found = 0; q < 40 && found < 3; ++q) {
       const int sx = static_cast<int>(rng() % g.width()), sy = static_cast<int>(rng() % g.height());
       const int gx = static_cast<int>(rng() % g.width()), gy = static_cast<int>(rng() % g.height());
-      const int sh = static_cast<int>(rng() % g.numHeadings()), gh = static_cast<int>(rng() % g.numHeadings());
-      if (!g.stateValid(sx, sy, sh) || !g.stateValid(gx, gy, gh) || std::hypot(gx - sx, gy - sy) < 40) continue;
+      const int sh = static_cast<int>(rng() % g.numHeadings()),
+                gh = static_cast<int>(rng() % g.numHeadings());
+      if (!g.stateValid(sx, sy, sh) || !g.stateValid(gx, gy, gh) ||
+          std::hypot(gx - sx, gy - sy) < 40)
+        continue;
       SearchLimits limits;
       limits.time_limit_s = 2.0;
       const PlanResult r = planner.plan(g.stateToPose(sx, sy, sh), g.stateToPose(gx, gy, gh),
@@ -418,7 +455,8 @@ TEST(PathSmootherTest, SbplPrimitiveFilesKeepEveryGuarantee) {
       ++found;
       for (const LatticeSolution& sol : r.solutions) {
         const SmoothedPath s = smoother.smooth(sol.poses);
-        ASSERT_EQ(checkSmoothed(g, smoother, sol.poses, sol.search.cost, s, false), "") << "seed " << seed << " query " << q;
+        ASSERT_EQ(checkSmoothed(g, smoother, sol.poses, sol.search.cost, s, false), "")
+            << "seed " << seed << " query " << q;
         ++paths;
         shortened += s.cost < s.lattice_cost;
       }
@@ -436,7 +474,7 @@ TEST(PathSmootherTest, RefusesWhatIsNotALatticePath) {
   const PathSmoother smoother(g);
   std::vector<Pose2D> path = {g.stateToPose(10, 10, 0)};
   EXPECT_EQ(smoother.smooth(path).poses.size(), 1u);  // start = goal: nothing to smooth
-  path.push_back(g.stateToPose(12, 10, 0));          // a jump, not a motion's poses
+  path.push_back(g.stateToPose(12, 10, 0));           // a jump, not a motion's poses
   EXPECT_THROW(smoother.smooth(path), std::invalid_argument);
   path = {{0.51, 0.52, 0.0}, {0.6, 0.52, 0.0}};  // not at a cell centre
   EXPECT_THROW(smoother.smooth(path), std::invalid_argument);

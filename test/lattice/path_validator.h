@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/motion_primitives.h"
 #include "amha_planner/lattice/path_smoother.h"
 
@@ -35,25 +35,30 @@ bool polygonMeetsSquare(const std::vector<std::array<double, 2>>& poly, int i, i
 
 /// The worst cost of the cells the segment (cell units) meets, or -1 if one is inscribed,
 /// lethal, unknown or outside the map (`why` says which).
-int centreSegmentWorst(const GridMap& map, double ax, double ay, double bx, double by, std::string* why);
+int centreSegmentWorst(const GridMap& map, double ax, double ay, double bx, double by,
+                       std::string* why);
 /// Is the footprint (metres, base frame) clear of lethal/unknown cells and inside the map at
 /// every pose from a to b (metres relative to the point (ox, oy) in cell units)?
-bool footprintMotionFree(const GridMap& map, const std::vector<std::array<double, 2>>& polygon, double ox, double oy,
-                         const Pose2D& a, const Pose2D& b, std::string* why);
+bool footprintMotionFree(const GridMap& map, const std::vector<std::array<double, 2>>& polygon,
+                         double ox, double oy, const Pose2D& a, const Pose2D& b, std::string* why);
 /// The documented edge cost for a motion of this length (m), turn (rad), multiplier and worst cell.
-Cost documentedCost(const ValidatorModel& m, double length, double turn, double multiplier, int worst);
+Cost documentedCost(const ValidatorModel& m, double length, double turn, double multiplier,
+                    int worst);
 
 /// Cost of primitive `p` from state `from`, or -1 if it is not collision-free. `why` explains.
-Cost bruteForceEdgeCost(const ValidatorModel& m, const LatticeState& from, const MotionPrimitive& p, std::string* why);
+Cost bruteForceEdgeCost(const ValidatorModel& m, const LatticeState& from, const MotionPrimitive& p,
+                        std::string* why);
 
 /// "" if the smoothed path is collision-free (every step by the brute force above), each piece
 /// costs what it says (shortcut pieces by the documented formula and no longer than
 /// max_piece_length; kept pieces are their primitive's poses from a state, at its cost) and the
 /// pieces cover the poses and add up to path.cost; else what is wrong.
-std::string validateSmoothedPath(const ValidatorModel& m, const SmoothedPath& path, double max_piece_length);
+std::string validateSmoothedPath(const ValidatorModel& m, const SmoothedPath& path,
+                                 double max_piece_length);
 
 /// "" if the path is valid and costs `claimed_cost`, else what is wrong.
-std::string validatePath(const ValidatorModel& m, const std::vector<LatticeState>& path, Cost claimed_cost);
+std::string validatePath(const ValidatorModel& m, const std::vector<LatticeState>& path,
+                         Cost claimed_cost);
 
 }  // namespace test
 }  // namespace lattice

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
 #include "path_validator.h"
 #include "test_support.h"
@@ -38,11 +38,15 @@ TEST(LatticePlannerTest, QueryErrors) {
   EXPECT_EQ(planner.checkQuery({-1.5, 3.0, 0.0}, ok2, &msg), QueryError::kStartOutOfMap);
   EXPECT_NE(msg.find("outside the map"), std::string::npos);
   EXPECT_EQ(planner.checkQuery(ok, {1.0, 4.01, 0.0}, &msg), QueryError::kGoalOutOfMap);
-  EXPECT_EQ(planner.checkQuery(ok, {0.55, 2.75, 0.0}, &msg), QueryError::kGoalInCollision);  // cell (15, 7)
+  EXPECT_EQ(planner.checkQuery(ok, {0.55, 2.75, 0.0}, &msg),
+            QueryError::kGoalInCollision);  // cell (15, 7)
   EXPECT_NE(msg.find("in collision"), std::string::npos);
-  EXPECT_EQ(planner.checkQuery(ok, {0.4, 2.75, 0.0}, &msg), QueryError::kGoalInCollision);  // footprint touches it
-  EXPECT_EQ(planner.checkQuery({-0.95, 3.0, 0.0}, ok2, &msg), QueryError::kStartInCollision);  // footprint leaves the map
-  const PlanResult r = planner.plan({-1.5, 3.0, 0.0}, ok2, defaultConfig(Algorithm::kAStar), SearchLimits());
+  EXPECT_EQ(planner.checkQuery(ok, {0.4, 2.75, 0.0}, &msg),
+            QueryError::kGoalInCollision);  // footprint touches it
+  EXPECT_EQ(planner.checkQuery({-0.95, 3.0, 0.0}, ok2, &msg),
+            QueryError::kStartInCollision);  // footprint leaves the map
+  const PlanResult r =
+      planner.plan({-1.5, 3.0, 0.0}, ok2, defaultConfig(Algorithm::kAStar), SearchLimits());
   EXPECT_EQ(r.error, QueryError::kStartOutOfMap);
   EXPECT_FALSE(r.message.empty());
   EXPECT_TRUE(r.solutions.empty());
@@ -113,7 +117,8 @@ Cost exhaustiveDijkstra(LatticeProblem& p) {
 }
 
 bool randomQuery(const LatticeGraph& g, std::mt19937& rng, LatticeState* s, LatticeState* t) {
-  std::uniform_int_distribution<int> rx(0, g.width() - 1), ry(0, g.height() - 1), rh(0, g.numHeadings() - 1);
+  std::uniform_int_distribution<int> rx(0, g.width() - 1), ry(0, g.height() - 1),
+      rh(0, g.numHeadings() - 1);
   for (int tries = 0; tries < 1000; ++tries) {
     *s = {rx(rng), ry(rng), rh(rng)};
     *t = {rx(rng), ry(rng), rh(rng)};
@@ -132,8 +137,9 @@ constexpr Cost kUnknownOptimum = -1;  // a solution is expected, its optimal cos
 
 // Runs `config` on the query and checks every reported solution with the validator, and, if the
 // optimum is known, that cost <= certified_bound x optimum.
-void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, LatticeState s, LatticeState t,
-                    const PlannerConfig& config, Cost optimal, double time_limit, bool backward = false) {
+void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, LatticeState s,
+                    LatticeState t, const PlannerConfig& config, Cost optimal, double time_limit,
+                    bool backward = false) {
   // Backward search runs from t to s over reversed edges, with tables measured from s.
   const LatticeState from = backward ? t : s, to = backward ? s : t;
   LatticeProblem p(g, b.compute(to.x, to.y, to.heading, true, 1, backward), from, to, 3, backward);
@@ -152,7 +158,8 @@ void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, Lattic
     ASSERT_EQ(sol.path.back(), p.goal());
     if (optimal != kInfiniteCost && optimal != kUnknownOptimum) {
       ASSERT_GE(sol.cost, optimal) << algorithmName(config.algorithm);
-      ASSERT_LE(static_cast<double>(sol.cost), sol.certified_bound * static_cast<double>(optimal) * (1 + 1e-12))
+      ASSERT_LE(static_cast<double>(sol.cost),
+                sol.certified_bound * static_cast<double>(optimal) * (1 + 1e-12))
           << algorithmName(config.algorithm) << " certified " << sol.certified_bound;
       ASSERT_LE(sol.certified_bound, sol.nominal_bound + 1e-12);
     }
@@ -167,8 +174,8 @@ void runAndValidate(const LatticeGraph& g, const HeuristicGridBuilder& b, Lattic
 }
 
 TEST(LatticeSearchTest, AStarEqualsExhaustiveDijkstraAndEveryPathValidates) {
-  const Algorithm all[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
-                           Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar};
+  const Algorithm all[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar,       Algorithm::kAraStar,
+                           Algorithm::kAnaStar,  Algorithm::kWeightedAStar, Algorithm::kAStar};
   int solved = 0;
   for (unsigned seed = 1; seed <= 8; ++seed) {
     Scenario sc = scenario(seed, 36);
@@ -183,7 +190,8 @@ TEST(LatticeSearchTest, AStarEqualsExhaustiveDijkstraAndEveryPathValidates) {
       solved += optimal != kInfiniteCost;
       {
         LatticeProblem p(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
-        const SearchResult r = makePlanner(defaultConfig(Algorithm::kAStar))->search(p, SearchLimits());
+        const SearchResult r =
+            makePlanner(defaultConfig(Algorithm::kAStar))->search(p, SearchLimits());
         if (optimal == kInfiniteCost) {
           EXPECT_EQ(r.status, SearchStatus::kNoSolution);
         } else {
@@ -230,7 +238,8 @@ TEST(LatticePlannerTest, BackwardSearchFindsTheSameOptimum) {
     LatticeProblem ref(g, b.compute(t.x, t.y, t.heading, true, 1), s, t, 3);
     const Cost optimal = exhaustiveDijkstra(ref);
     const Pose2D ps = g.stateToPose(s.x, s.y, s.heading), pt = g.stateToPose(t.x, t.y, t.heading);
-    const PlanResult f = forward_planner.plan(ps, pt, defaultConfig(Algorithm::kAStar), SearchLimits());
+    const PlanResult f =
+        forward_planner.plan(ps, pt, defaultConfig(Algorithm::kAStar), SearchLimits());
     for (Algorithm a : {Algorithm::kAStar, Algorithm::kAmhaStar, Algorithm::kAraStar}) {
       const PlanResult r = backward_planner.plan(ps, pt, defaultConfig(a), SearchLimits());
       if (optimal == kInfiniteCost) {
@@ -244,7 +253,8 @@ TEST(LatticePlannerTest, BackwardSearchFindsTheSameOptimum) {
         EXPECT_EQ(f.solutions.back().search.cost, optimal);
       }
       for (const LatticeSolution& sol : r.solutions) {
-        EXPECT_LE(static_cast<double>(sol.search.cost), sol.search.certified_bound * optimal * (1 + 1e-12));
+        EXPECT_LE(static_cast<double>(sol.search.cost),
+                  sol.search.certified_bound * optimal * (1 + 1e-12));
         // Poses run from the start to the goal.
         EXPECT_NEAR(sol.poses.front().x, ps.x, 1e-9);
         EXPECT_NEAR(sol.poses.front().y, ps.y, 1e-9);
@@ -268,7 +278,8 @@ TEST(LatticePlannerTest, PosesCacheAndConcurrentQueries) {
   }
   const PlannerConfig pc = defaultConfig(Algorithm::kAmhaStar);
   std::vector<PlanResult> sequential;
-  for (const auto& q : queries) sequential.push_back(planner.plan(q.first, q.second, pc, SearchLimits()));
+  for (const auto& q : queries)
+    sequential.push_back(planner.plan(q.first, q.second, pc, SearchLimits()));
   // Poses: the path starts at the start state's pose, ends at the goal's, without jumps.
   for (std::size_t i = 0; i < queries.size(); ++i) {
     const PlanResult& r = sequential[i];
@@ -285,14 +296,17 @@ TEST(LatticePlannerTest, PosesCacheAndConcurrentQueries) {
     }
   }
   // Same goal again: the grids come from the cache.
-  const PlanResult again = planner.plan(queries.back().first, queries.back().second, pc, SearchLimits());
+  const PlanResult again =
+      planner.plan(queries.back().first, queries.back().second, pc, SearchLimits());
   EXPECT_EQ(again.heuristic_seconds, 0.0);
   EXPECT_GT(sequential[0].heuristic_seconds, 0.0);
   // Concurrent calls give the same answers.
   std::vector<PlanResult> parallel(queries.size());
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < queries.size(); ++i) {
-    threads.emplace_back([&, i] { parallel[i] = planner.plan(queries[i].first, queries[i].second, pc, SearchLimits()); });
+    threads.emplace_back([&, i] {
+      parallel[i] = planner.plan(queries[i].first, queries[i].second, pc, SearchLimits());
+    });
   }
   for (auto& t : threads) t.join();
   for (std::size_t i = 0; i < queries.size(); ++i) {

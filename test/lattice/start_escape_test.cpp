@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/lattice_problem.h"
+#include "amha_planner/lattice/detail/start_escape.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/lattice/path_smoother.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
-#include "amha_planner/lattice/detail/start_escape.h"
 #include "path_validator.h"
 #include "test_support.h"
 
@@ -35,7 +35,8 @@ std::shared_ptr<GridMap> inflatedMap(unsigned seed) {
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy;
-          if (nx >= 0 && ny >= 0 && nx < m->width && ny < m->height && copy.at(nx, ny) >= kLethalCost) {
+          if (nx >= 0 && ny >= 0 && nx < m->width && ny < m->height &&
+              copy.at(nx, ny) >= kLethalCost) {
             m->cost[static_cast<std::size_t>(y) * m->width + x] = kInscribedCost;
           }
         }
@@ -48,8 +49,9 @@ std::shared_ptr<GridMap> inflatedMap(unsigned seed) {
 // The lethal and unknown cells under the robot at s (the rule's "cells it already stands on").
 std::vector<std::size_t> cellsUnder(const LatticeGraph& g, const LatticeState& s) {
   std::vector<std::size_t> out;
-  for (const CellOffset& c : footprintCells(g.footprint(), Pose2D{0, 0, g.primitives().heading_angles[s.heading]},
-                                            g.map().resolution)) {
+  for (const CellOffset& c :
+       footprintCells(g.footprint(), Pose2D{0, 0, g.primitives().heading_angles[s.heading]},
+                      g.map().resolution)) {
     const int x = s.x + c.dx, y = s.y + c.dy;
     if (x >= 0 && y >= 0 && x < g.width() && y < g.height() && g.map().at(x, y) >= kLethalCost) {
       out.push_back(static_cast<std::size_t>(y) * g.width() + x);
@@ -59,7 +61,8 @@ std::vector<std::size_t> cellsUnder(const LatticeGraph& g, const LatticeState& s
 }
 
 // The rule written out again: an escape motion from (x, y) by action i, or -1.
-Cost ruleCost(const LatticeGraph& g, const std::vector<std::size_t>& under, int x, int y, std::size_t i) {
+Cost ruleCost(const LatticeGraph& g, const std::vector<std::size_t>& under, int x, int y,
+              std::size_t i) {
   const LatticeAction& a = g.actions()[i];
   const PrimitiveCells& cells = g.actionCells(i);
   for (const auto* list : {&cells.centre, &cells.swept}) {
@@ -67,21 +70,25 @@ Cost ruleCost(const LatticeGraph& g, const std::vector<std::size_t>& under, int 
       const int cx = x + c.dx, cy = y + c.dy;
       if (cx < 0 || cy < 0 || cx >= g.width() || cy >= g.height()) return -1;
       const std::size_t k = static_cast<std::size_t>(cy) * g.width() + cx;
-      if (g.map().cost[k] >= kLethalCost && std::find(under.begin(), under.end(), k) == under.end()) return -1;
+      if (g.map().cost[k] >= kLethalCost && std::find(under.begin(), under.end(), k) == under.end())
+        return -1;
     }
   }
-  return static_cast<Cost>(std::ceil(kPenalty * static_cast<double>(g.costWithPenalty(a.base_cost, 252)) - 1e-9));
+  return static_cast<Cost>(
+      std::ceil(kPenalty * static_cast<double>(g.costWithPenalty(a.base_cost, 252)) - 1e-9));
 }
 
 // The relaxed problem's optimal cost from s (in collision) to t, by Dijkstra over every state:
 // escape motions out of states in collision within the tolerance, the graph's edges elsewhere.
 Cost relaxedOptimum(const LatticeGraph& g, const LatticeState& s, const LatticeState& t) {
   const std::vector<std::size_t> under = cellsUnder(g, s);
-  const std::vector<Cost> d = test::dijkstraFrom(g, s, [&](int x, int y, const LatticeAction& a) -> Cost {
-    if (g.stateValid(x, y, a.start_heading)) return g.edgeCost(x, y, a);
-    if (std::hypot(x + a.dx - s.x, y + a.dy - s.y) * g.map().resolution > kTolerance + 1e-9) return -1;
-    return ruleCost(g, under, x, y, static_cast<std::size_t>(&a - g.actions().data()));
-  });
+  const std::vector<Cost> d =
+      test::dijkstraFrom(g, s, [&](int x, int y, const LatticeAction& a) -> Cost {
+        if (g.stateValid(x, y, a.start_heading)) return g.edgeCost(x, y, a);
+        if (std::hypot(x + a.dx - s.x, y + a.dy - s.y) * g.map().resolution > kTolerance + 1e-9)
+          return -1;
+        return ruleCost(g, under, x, y, static_cast<std::size_t>(&a - g.actions().data()));
+      });
   return d[(static_cast<std::size_t>(t.y) * g.width() + t.x) * g.numHeadings() + t.heading];
 }
 
@@ -103,8 +110,8 @@ LatticeState randomState(const LatticeGraph& g, std::mt19937& rng) {
 }
 
 TEST(StartEscape, SolutionsAgainstAnExhaustiveDijkstraOfTheRelaxedProblem) {
-  const Algorithm all[] = {Algorithm::kAStar, Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
-                           Algorithm::kAnaStar, Algorithm::kWeightedAStar};
+  const Algorithm all[] = {Algorithm::kAStar,   Algorithm::kAmhaStar, Algorithm::kMhaStar,
+                           Algorithm::kAraStar, Algorithm::kAnaStar,  Algorithm::kWeightedAStar};
   int queries = 0, solved = 0, multi_step = 0;
   for (unsigned seed = 1; seed <= 12; ++seed) {
     const auto map = inflatedMap(seed);
@@ -132,41 +139,48 @@ TEST(StartEscape, SolutionsAgainstAnExhaustiveDijkstraOfTheRelaxedProblem) {
         p.startAtExits(exits);
         SearchLimits limits;
         limits.time_limit_s = 10;
-        const SearchResult r = makePlanner(defaultConfig(alg))->search(p, limits, [&](const Solution& sol) {
-          ASSERT_GE(sol.path.size(), 2u);
-          ASSERT_EQ(sol.path.front(), p.virtualStart());
-          std::vector<LatticeState> rest;
-          for (std::size_t k = 1; k < sol.path.size(); ++k) rest.push_back(p.state(sol.path[k]));
-          const StartEscape::Exit* exit = escape.exitAt(rest.front());
-          ASSERT_NE(exit, nullptr);
-          // The escape: from s, each motion out of a state in collision within the tolerance,
-          // valid on the rule's map, costing the penalty times its cost there.
-          const std::vector<StartEscape::Step> steps = escape.path(*exit);
-          ASSERT_FALSE(steps.empty());
-          ASSERT_TRUE(steps.front().from == s);
-          Cost escape_cost = 0;
-          for (std::size_t k = 0; k < steps.size(); ++k) {
-            const LatticeState& a = steps[k].from;
-            const LatticeAction& act = *steps[k].action;
-            const LatticeState to{a.x + act.dx, a.y + act.dy, act.end_heading};
-            ASSERT_FALSE(g.stateValid(a.x, a.y, a.heading)) << "an escape goes on only while in collision";
-            ASSERT_LE(std::hypot(to.x - s.x, to.y - s.y) * 0.05, kTolerance + 1e-9);
-            ASSERT_TRUE(to == (k + 1 < steps.size() ? steps[k + 1].from : exit->state));
-            std::string why;
-            const Cost c = test::bruteForceEdgeCost(rule_model, a, g.primitives().primitives[act.primitive], &why);
-            ASSERT_GE(c, 0) << "escape motion " << k << " breaks the rule: " << why;
-            escape_cost += static_cast<Cost>(std::ceil(kPenalty * static_cast<double>(c) - 1e-9));
-          }
-          ASSERT_EQ(escape_cost, exit->cost);
-          ASSERT_TRUE(g.stateValid(exit->state.x, exit->state.y, exit->state.heading));
-          // The rest: an ordinary path from the exit, validated as any other.
-          ASSERT_EQ(test::validatePath(model, rest, sol.cost - exit->cost), "") << algorithmName(alg);
-          ASSERT_TRUE(rest.back() == t);
-          ASSERT_GE(sol.cost, optimal);
-          ASSERT_LE(static_cast<double>(sol.cost), sol.certified_bound * static_cast<double>(optimal) * (1 + 1e-12))
-              << algorithmName(alg);
-          multi_step += steps.size() > 1;
-        });
+        const SearchResult r =
+            makePlanner(defaultConfig(alg))->search(p, limits, [&](const Solution& sol) {
+              ASSERT_GE(sol.path.size(), 2u);
+              ASSERT_EQ(sol.path.front(), p.virtualStart());
+              std::vector<LatticeState> rest;
+              for (std::size_t k = 1; k < sol.path.size(); ++k)
+                rest.push_back(p.state(sol.path[k]));
+              const StartEscape::Exit* exit = escape.exitAt(rest.front());
+              ASSERT_NE(exit, nullptr);
+              // The escape: from s, each motion out of a state in collision within the tolerance,
+              // valid on the rule's map, costing the penalty times its cost there.
+              const std::vector<StartEscape::Step> steps = escape.path(*exit);
+              ASSERT_FALSE(steps.empty());
+              ASSERT_TRUE(steps.front().from == s);
+              Cost escape_cost = 0;
+              for (std::size_t k = 0; k < steps.size(); ++k) {
+                const LatticeState& a = steps[k].from;
+                const LatticeAction& act = *steps[k].action;
+                const LatticeState to{a.x + act.dx, a.y + act.dy, act.end_heading};
+                ASSERT_FALSE(g.stateValid(a.x, a.y, a.heading))
+                    << "an escape goes on only while in collision";
+                ASSERT_LE(std::hypot(to.x - s.x, to.y - s.y) * 0.05, kTolerance + 1e-9);
+                ASSERT_TRUE(to == (k + 1 < steps.size() ? steps[k + 1].from : exit->state));
+                std::string why;
+                const Cost c = test::bruteForceEdgeCost(
+                    rule_model, a, g.primitives().primitives[act.primitive], &why);
+                ASSERT_GE(c, 0) << "escape motion " << k << " breaks the rule: " << why;
+                escape_cost +=
+                    static_cast<Cost>(std::ceil(kPenalty * static_cast<double>(c) - 1e-9));
+              }
+              ASSERT_EQ(escape_cost, exit->cost);
+              ASSERT_TRUE(g.stateValid(exit->state.x, exit->state.y, exit->state.heading));
+              // The rest: an ordinary path from the exit, validated as any other.
+              ASSERT_EQ(test::validatePath(model, rest, sol.cost - exit->cost), "")
+                  << algorithmName(alg);
+              ASSERT_TRUE(rest.back() == t);
+              ASSERT_GE(sol.cost, optimal);
+              ASSERT_LE(static_cast<double>(sol.cost),
+                        sol.certified_bound * static_cast<double>(optimal) * (1 + 1e-12))
+                  << algorithmName(alg);
+              multi_step += steps.size() > 1;
+            });
         if (HasFatalFailure()) return;
         if (optimal == kInfiniteCost) {
           EXPECT_FALSE(r.hasSolution()) << algorithmName(alg);
@@ -235,8 +249,10 @@ std::shared_ptr<GridMap> corridor() {
   for (int y = 0; y < 40; ++y) {
     for (int x = 0; x < 80; ++x) {
       std::uint8_t& c = m->cost[static_cast<std::size_t>(y) * 80 + x];
-      if (y < 10 || y >= 30 || x < 3) c = kLethalCost;
-      else if (y < 12 || y >= 28 || x < 5) c = kInscribedCost;
+      if (y < 10 || y >= 30 || x < 3)
+        c = kLethalCost;
+      else if (y < 12 || y >= 28 || x < 5)
+        c = kInscribedCost;
     }
   }
   return m;
@@ -276,7 +292,8 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
   ASSERT_GE(best.escape_poses, 2u);
   EXPECT_LE(std::hypot(best.poses.front().x - 0.225, best.poses.front().y - 1.0), 0.05);
   const Pose2D exit = best.poses[best.escape_poses - 1];
-  EXPECT_EQ(planner.checkQuery(exit, goal, nullptr), QueryError::kNone) << "the escape ends collision-free";
+  EXPECT_EQ(planner.checkQuery(exit, goal, nullptr), QueryError::kNone)
+      << "the escape ends collision-free";
   for (std::size_t k = 0; k + 1 < best.escape_poses; ++k) {
     EXPECT_GE(best.poses[k].x, 0.2) << "leaves forward, away from the wall";
   }
@@ -284,7 +301,8 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
   EXPECT_LT(best.escape_cost, best.search.cost);
   EXPECT_NE(r.escape_message.find("is in collision"), std::string::npos) << r.escape_message;
   EXPECT_NE(r.escape_message.find("leaves it by"), std::string::npos) << r.escape_message;
-  EXPECT_NE(r.escape_message.find("relative to the optimum"), std::string::npos) << r.escape_message;
+  EXPECT_NE(r.escape_message.find("relative to the optimum"), std::string::npos)
+      << r.escape_message;
   EXPECT_NEAR(best.poses.back().x, 3.525, 0.03);
 
   // Smoothed, as the server publishes it: the escape as it is, the rest smoothed, the cost at
@@ -298,7 +316,9 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
       const std::vector<Pose2D>& p = step.published.poses;
       ASSERT_GE(p.size(), raw.escape_poses);
       for (std::size_t k = 0; k < raw.escape_poses; ++k) {
-        EXPECT_TRUE(p[k].x == raw.poses[k].x && p[k].y == raw.poses[k].y && p[k].theta == raw.poses[k].theta) << k;
+        EXPECT_TRUE(p[k].x == raw.poses[k].x && p[k].y == raw.poses[k].y &&
+                    p[k].theta == raw.poses[k].theta)
+            << k;
       }
       EXPECT_NEAR(p.back().x, raw.poses.back().x, 1e-9);
       EXPECT_NEAR(p.back().y, raw.poses.back().y, 1e-9);
@@ -322,9 +342,10 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
   // A collision-free start is planned from as it is: the same result with a tolerance or not.
   const Pose2D free_start{1.0, 1.0, 0.0};
   so.tolerance = 0.5;
-  const PlanResult plain = planner.plan(free_start, goal, defaultConfig(Algorithm::kAStar), seconds(5));
-  const PlanResult tolerant =
-      planner.plan(free_start, goal, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5));
+  const PlanResult plain =
+      planner.plan(free_start, goal, defaultConfig(Algorithm::kAStar), seconds(5));
+  const PlanResult tolerant = planner.plan(free_start, goal, so, GoalOptions(),
+                                           defaultConfig(Algorithm::kAStar), seconds(5));
   ASSERT_TRUE(plain.hasSolution() && tolerant.hasSolution());
   EXPECT_FALSE(tolerant.start_escaped);
   EXPECT_EQ(tolerant.best().search.cost, plain.best().search.cost);
@@ -332,27 +353,36 @@ TEST(StartEscape, PlanLeavesTheCollisionAndSaysHow) {
   EXPECT_TRUE(tolerant.escape_message.empty());
 
   // Goal errors still come first when the start could be left.
-  EXPECT_EQ(planner.plan(start, Pose2D{0.1, 0.1, 0.0}, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5)).error,
+  EXPECT_EQ(planner
+                .plan(start, Pose2D{0.1, 0.1, 0.0}, so, GoalOptions(),
+                      defaultConfig(Algorithm::kAStar), seconds(5))
+                .error,
             QueryError::kGoalInCollision);
-  EXPECT_EQ(planner.plan(start, Pose2D{9.0, 1.0, 0.0}, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5)).error,
+  EXPECT_EQ(planner
+                .plan(start, Pose2D{9.0, 1.0, 0.0}, so, GoalOptions(),
+                      defaultConfig(Algorithm::kAStar), seconds(5))
+                .error,
             QueryError::kGoalOutOfMap);
   // With a goal tolerance and any heading as well: the obstructed goal is replaced.
   GoalOptions go;
   go.tolerance = 0.5;
   go.any_heading = true;
-  r = planner.plan(start, Pose2D{3.5, 0.45, 0.0}, so, go, defaultConfig(Algorithm::kAmhaStar), seconds(5));
+  r = planner.plan(start, Pose2D{3.5, 0.45, 0.0}, so, go, defaultConfig(Algorithm::kAmhaStar),
+                   seconds(5));
   ASSERT_EQ(r.error, QueryError::kNone) << r.message;
   EXPECT_TRUE(r.start_escaped && r.goal_substituted);
   ASSERT_FALSE(r.solutions.empty());
 
   // Bad options.
   so.tolerance = -1.0;
-  EXPECT_THROW(planner.plan(start, goal, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      planner.plan(start, goal, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5)),
+      std::invalid_argument);
   so.tolerance = 0.5;
   so.penalty = 0.5;
-  EXPECT_THROW(planner.plan(start, goal, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      planner.plan(start, goal, so, GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5)),
+      std::invalid_argument);
 }
 
 TEST(StartEscape, NeverCrossesAnObstacleTheRobotIsNotOn) {
@@ -365,8 +395,8 @@ TEST(StartEscape, NeverCrossesAnObstacleTheRobotIsNotOn) {
   LatticePlanner planner(m, corridorRobot());
   StartOptions so;
   so.tolerance = 2.0;
-  const PlanResult r = planner.plan(Pose2D{0.225, 1.0, 0.0}, Pose2D{3.5, 1.0, 0.0}, so, GoalOptions(),
-                                    defaultConfig(Algorithm::kAStar), seconds(5));
+  const PlanResult r = planner.plan(Pose2D{0.225, 1.0, 0.0}, Pose2D{3.5, 1.0, 0.0}, so,
+                                    GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5));
   EXPECT_EQ(r.error, QueryError::kStartInCollision) << r.message;
   EXPECT_NE(r.message.find("no collision-free pose"), std::string::npos) << r.message;
 }
@@ -377,8 +407,8 @@ TEST(StartEscape, BackwardSearchRefusesAnEscapeAndSaysWhy) {
   LatticePlanner planner(corridor(), c);
   StartOptions so;
   so.tolerance = 0.5;
-  const PlanResult r = planner.plan(Pose2D{0.225, 1.0, 0.0}, Pose2D{3.5, 1.0, 0.0}, so, GoalOptions(),
-                                    defaultConfig(Algorithm::kAStar), seconds(5));
+  const PlanResult r = planner.plan(Pose2D{0.225, 1.0, 0.0}, Pose2D{3.5, 1.0, 0.0}, so,
+                                    GoalOptions(), defaultConfig(Algorithm::kAStar), seconds(5));
   EXPECT_EQ(r.error, QueryError::kStartInCollision);
   EXPECT_NE(r.message.find("backward_search"), std::string::npos) << r.message;
 }
@@ -390,8 +420,8 @@ TEST(StartEscape, ACancelledRequestStopsBeforeSearching) {
   l.cancel = &cancel;
   StartOptions so;
   so.tolerance = 0.5;
-  const PlanResult r = planner.plan(Pose2D{0.225, 1.0, 0.0}, Pose2D{3.5, 1.0, 0.0}, so, GoalOptions(),
-                                    defaultConfig(Algorithm::kAStar), l);
+  const PlanResult r = planner.plan(Pose2D{0.225, 1.0, 0.0}, Pose2D{3.5, 1.0, 0.0}, so,
+                                    GoalOptions(), defaultConfig(Algorithm::kAStar), l);
   EXPECT_EQ(r.error, QueryError::kNone);
   EXPECT_EQ(r.search.status, SearchStatus::kCancelled);
   EXPECT_TRUE(r.solutions.empty());

@@ -1,11 +1,11 @@
 #include "test_support.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
 #include <cstdlib>
 #include <queue>
 #include <random>
 #include <tuple>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace amha {
 namespace lattice {
@@ -25,8 +25,8 @@ std::string tempDir() {
   return d != nullptr ? std::string(d) : std::string("/tmp");
 }
 
-std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed, int obstacles,
-                                   int cost_max) {
+std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
+                                   int obstacles, int cost_max) {
   auto m = std::make_shared<GridMap>();
   m->width = width;
   m->height = height;
@@ -37,11 +37,13 @@ std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, uns
     std::uniform_int_distribution<int> c(0, cost_max);
     for (auto& v : m->cost) v = static_cast<std::uint8_t>(c(rng));
   }
-  std::uniform_int_distribution<int> rx(0, width - 1), ry(0, height - 1), rs(1, std::max(2, width / 6));
+  std::uniform_int_distribution<int> rx(0, width - 1), ry(0, height - 1),
+      rs(1, std::max(2, width / 6));
   for (int k = 0; k < obstacles; ++k) {
     const int x0 = rx(rng), y0 = ry(rng), w = rs(rng), h = rs(rng);
     for (int y = y0; y < std::min(height, y0 + h); ++y) {
-      for (int x = x0; x < std::min(width, x0 + w); ++x) m->cost[static_cast<std::size_t>(y) * width + x] = kLethalCost;
+      for (int x = x0; x < std::min(width, x0 + w); ++x)
+        m->cost[static_cast<std::size_t>(y) * width + x] = kLethalCost;
     }
   }
   return m;

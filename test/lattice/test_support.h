@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
-#include "amha_planner/lattice/detail/lattice_problem.h"
 
 namespace amha {
 namespace lattice {
@@ -42,6 +42,6 @@ std::vector<std::array<double, 2>> rectangle(double half_length, double half_wid
 }  // namespace lattice
 }  // namespace amha
 
-#define AMHA_REQUIRE_SHARED_DATA(var)                                     \
-  const std::string var = ::amha::lattice::test::sharedData();            \
+#define AMHA_REQUIRE_SHARED_DATA(var)                          \
+  const std::string var = ::amha::lattice::test::sharedData(); \
   if (var.empty()) GTEST_SKIP() << "shared data (AMHA_SHARED_DATA) absent"

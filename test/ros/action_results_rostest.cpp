@@ -61,7 +61,8 @@ struct RawActionTopics {
   bool connected(double seconds) {
     const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
     while (Clock::now() < deadline) {
-      if (goal_pub.getNumSubscribers() > 0 && cancel_pub.getNumSubscribers() > 0 && result_sub.getNumPublishers() > 0) {
+      if (goal_pub.getNumSubscribers() > 0 && cancel_pub.getNumSubscribers() > 0 &&
+          result_sub.getNumPublishers() > 0) {
         return true;
       }
       ros::WallDuration(0.05).sleep();
@@ -78,7 +79,8 @@ struct RawActionTopics {
   }
   bool waitResult(const std::string& id, PlanAnytimeActionResult* out) {
     std::unique_lock<std::mutex> lock(mutex);
-    if (!arrived.wait_for(lock, std::chrono::seconds(10), [&] { return results.count(id) > 0; })) return false;
+    if (!arrived.wait_for(lock, std::chrono::seconds(10), [&] { return results.count(id) > 0; }))
+      return false;
     *out = results[id];
     return true;
   }
@@ -121,8 +123,10 @@ TEST(PlanAnytimeResults, AGoalWhoseCancelCameFirstIsCancelledNotSuccessful) {
   PlanAnytimeActionResult r;
   ASSERT_TRUE(topics.waitResult(cancel.id, &r));
   EXPECT_EQ(r.status.status, GoalStatus::RECALLED);
-  EXPECT_EQ(r.result.status, PlanAnytimeResult::CANCELLED) << "status " << r.result.status << ": " << r.result.message;
-  EXPECT_NE(r.result.message.find("before the planner received the goal"), std::string::npos) << r.result.message;
+  EXPECT_EQ(r.result.status, PlanAnytimeResult::CANCELLED)
+      << "status " << r.result.status << ": " << r.result.message;
+  EXPECT_NE(r.result.message.find("before the planner received the goal"), std::string::npos)
+      << r.result.message;
   EXPECT_TRUE(r.result.path.poses.empty());
 
   // A goal stamped before a cancel-everything-before stamp: actionlib cancels it on arrival.
@@ -212,7 +216,8 @@ TEST(PlanAnytimeResults, AGoalCancelledWhileItWaitsIsAnsweredAtOnce) {
   EXPECT_LT(latency, 0.050);
   EXPECT_EQ(waiting.getState(), State::PREEMPTED);
   EXPECT_EQ(waiting.getResult()->status, PlanAnytimeResult::CANCELLED);
-  EXPECT_NE(waiting.getResult()->message.find("waiting in the queue"), std::string::npos) << waiting.getResult()->message;
+  EXPECT_NE(waiting.getResult()->message.find("waiting in the queue"), std::string::npos)
+      << waiting.getResult()->message;
   EXPECT_GT(waiting.getResult()->request_id, 0u);
   EXPECT_FALSE(running.getState().isDone()) << "the running goal went on";
   running.cancelGoal();
@@ -231,8 +236,10 @@ TEST(PlanAnytimeResults, AGoalWaitingForATransformIsCancelledAtOnce) {
   ASSERT_GE(latency, 0.0) << "no result within 5 s of the cancel";
   std::printf("[ INFO     ] cancel during a transform wait -> result: %.1f ms\n", latency * 1e3);
   EXPECT_LT(latency, 0.050);
-  EXPECT_EQ(client.getResult()->status, PlanAnytimeResult::CANCELLED) << client.getResult()->message;
-  EXPECT_NE(client.getResult()->message.find("waiting for a transform"), std::string::npos) << client.getResult()->message;
+  EXPECT_EQ(client.getResult()->status, PlanAnytimeResult::CANCELLED)
+      << client.getResult()->message;
+  EXPECT_NE(client.getResult()->message.find("waiting for a transform"), std::string::npos)
+      << client.getResult()->message;
 }
 
 }  // namespace

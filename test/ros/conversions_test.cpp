@@ -108,8 +108,7 @@ TEST(Conversions, BadGridsAreRefusedWithAReason) {
   }
 }
 
-map_msgs::OccupancyGridUpdate gridUpdate(int x, int y, unsigned w, unsigned h,
-                                         std::int8_t first) {
+map_msgs::OccupancyGridUpdate gridUpdate(int x, int y, unsigned w, unsigned h, std::int8_t first) {
   map_msgs::OccupancyGridUpdate u;
   u.x = x;
   u.y = y;
@@ -174,7 +173,8 @@ TEST(MapUpdate, BadUpdatesAreRefusedWithAReasonAndChangeNothing) {
 TEST(MapUpdate, ConvertingOnlyTheChangedCellsGivesTheFullConversion) {
   namespace lat = amha::lattice;
   nav_msgs::OccupancyGrid before = grid(7, 5, 0.0);
-  for (std::size_t i = 0; i < before.data.size(); ++i) before.data[i] = static_cast<std::int8_t>(i * 7 % 101);
+  for (std::size_t i = 0; i < before.data.size(); ++i)
+    before.data[i] = static_cast<std::int8_t>(i * 7 % 101);
   lat::OccupancyConversion conversion;
   conversion.lethal_threshold = 50;
   const lat::GridMap old_grid = gridMapFromOccupancy(before, conversion, 1000);

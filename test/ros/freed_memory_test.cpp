@@ -56,7 +56,8 @@ std::shared_ptr<lat::GridMap> blockMap(int n, unsigned seed) {
   for (int k = 0; k < n; ++k) {
     const int x0 = static_cast<int>(rng() % n), y0 = static_cast<int>(rng() % n);
     for (int y = y0; y < std::min(n, y0 + 20); ++y) {
-      for (int x = x0; x < std::min(n, x0 + 20); ++x) map->cost[static_cast<std::size_t>(y) * n + x] = lat::kLethalCost;
+      for (int x = x0; x < std::min(n, x0 + 20); ++x)
+        map->cost[static_cast<std::size_t>(y) * n + x] = lat::kLethalCost;
     }
   }
   return map;
@@ -71,7 +72,8 @@ double rssKeptByHugeMaps() {
       lat::LatticePlanner planner(blockMap(4000, cycle), lat::LatticeConfig());
       amha::SearchLimits limits;
       limits.time_limit_s = 0.5;
-      planner.plan({100.0, 100.0, 0.0}, {103.0, 102.0, 0.0}, amha::defaultConfig(amha::Algorithm::kAmhaStar), limits);
+      planner.plan({100.0, 100.0, 0.0}, {103.0, 102.0, 0.0},
+                   amha::defaultConfig(amha::Algorithm::kAmhaStar), limits);
     }).join();
   }
   EXPECT_LT(inUseMb() - heap0, 2.0) << "live heap left behind: a leak";
@@ -81,8 +83,8 @@ double rssKeptByHugeMaps() {
 TEST(FreedMemory, GlibcsDefaultKeepsHugeMapsResidentWithoutALeak) {
   if (AMHA_OWN_MALLOC) GTEST_SKIP() << "the sanitizers replace malloc";
   const double kept = rssKeptByHugeMaps();
-  std::cout << "[ memory   ] glibc's default thresholds: " << kept << " MB more resident after three 4000 x 4000 maps"
-            << std::endl;
+  std::cout << "[ memory   ] glibc's default thresholds: " << kept
+            << " MB more resident after three 4000 x 4000 maps" << std::endl;
   // What glibc keeps varies too much from run to run to be checked (see the top); the figure is
   // reported, and the check is the live heap's (no leak).
 }
@@ -91,8 +93,8 @@ TEST(FreedMemory, LargeBlocksMappedAloneLeaveNothingResident) {
   if (AMHA_OWN_MALLOC) GTEST_SKIP() << "the sanitizers replace malloc";
   ASSERT_TRUE(mapLargeBlocksAlone(std::size_t{4} << 20));  // the server's setting
   const double kept = rssKeptByHugeMaps();
-  std::cout << "[ memory   ] blocks >= 4 MiB mapped alone: " << kept << " MB more resident after three 4000 x 4000 maps"
-            << std::endl;
+  std::cout << "[ memory   ] blocks >= 4 MiB mapped alone: " << kept
+            << " MB more resident after three 4000 x 4000 maps" << std::endl;
   EXPECT_LT(kept, 10.0);
 }
 
@@ -112,10 +114,12 @@ TEST(FreedMemory, TheReleaserReturnsFreedSmallBlocksOnceMuchIsFreed) {
   const double rss_kept = rssMb();
   const auto t0 = std::chrono::steady_clock::now();
   const FreedMemory freed = releaser.releaseIfMuchFreed();
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double rss1 = rssMb();
-  std::cout << "[ memory   ] 48 MB freed between live blocks: RSS " << rss_kept << " -> " << rss1 << " MB ("
-            << freed.free_bytes / 1048576.0 << " MB free in the arenas; trim in " << ms << " ms)" << std::endl;
+  std::cout << "[ memory   ] 48 MB freed between live blocks: RSS " << rss_kept << " -> " << rss1
+            << " MB (" << freed.free_bytes / 1048576.0 << " MB free in the arenas; trim in " << ms
+            << " ms)" << std::endl;
   EXPECT_TRUE(freed.trimmed);
   EXPECT_LT(rss1, rss_kept - 40.0);
   EXPECT_FALSE(releaser.releaseIfMuchFreed().trimmed) << "nothing freed since";

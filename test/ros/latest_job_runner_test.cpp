@@ -66,7 +66,8 @@ TEST(ConcurrentLatestJobRunner, NeverRunsTwoJobsAtOnceAndAlwaysRunsTheLastPosted
     return [&, id] {
       const int now = ++concurrent;
       int seen = max_concurrent.load();
-      while (now > seen && !max_concurrent.compare_exchange_weak(seen, now)) {}
+      while (now > seen && !max_concurrent.compare_exchange_weak(seen, now)) {
+      }
       std::this_thread::sleep_for(std::chrono::microseconds(200));
       last = id;
       --concurrent;

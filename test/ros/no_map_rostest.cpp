@@ -67,7 +67,8 @@ TEST(PlannerNodeWithoutMap, EveryInterfaceSaysNoMap) {
 // A map the robot cannot use, or one in a frame without a transform to the global frame, is
 // refused, and NO_MAP says why (issue 22, items 2 and 10).
 TEST(PlannerNodeWithoutMap, NoMapSaysWhyTheLastMapWasRefused) {
-  MapBuilder tiny(-0.15, -0.15, 0.05, 6, 6, "map");  // 0.3 m square: the 0.36 m wide robot fits nowhere
+  MapBuilder tiny(-0.15, -0.15, 0.05, 6, 6,
+                  "map");  // 0.3 m square: the 0.36 m wide robot fits nowhere
   g_map_pub.publish(tiny.grid);
   Plan::Response res;
   for (int i = 0; i < 50 && res.message.find("wider than the map") == std::string::npos; ++i) {
@@ -75,7 +76,8 @@ TEST(PlannerNodeWithoutMap, NoMapSaysWhyTheLastMapWasRefused) {
     res = plan();
   }
   EXPECT_EQ(res.status, Status::NO_MAP) << res.message;
-  EXPECT_NE(res.message.find("is wider than the map (0.3 x 0.3 m)"), std::string::npos) << res.message;
+  EXPECT_NE(res.message.find("is wider than the map (0.3 x 0.3 m)"), std::string::npos)
+      << res.message;
 
   auto in_odom = testMap();
   in_odom.header.frame_id = "odom";  // this launch has no transforms at all
@@ -85,18 +87,27 @@ TEST(PlannerNodeWithoutMap, NoMapSaysWhyTheLastMapWasRefused) {
     res = plan();
   }
   EXPECT_EQ(res.status, Status::NO_MAP) << res.message;
-  EXPECT_NE(res.message.find("it is in frame 'odom', and there is no transform to the global frame 'map'"),
-            std::string::npos) << res.message;
+  EXPECT_NE(res.message.find(
+                "it is in frame 'odom', and there is no transform to the global frame 'map'"),
+            std::string::npos)
+      << res.message;
 }
 
 // Parameters outside their ranges stop the planner at start-up with a message naming them
 // (issue 22, item 1: weights; item 2: robot_radius up to 100 m was accepted).
 TEST(PlannerParams, ValuesOutsideTheirRangesAreRefused) {
   ros::NodeHandle pnh("/param_checks");
-  const std::vector<std::pair<std::string, double>> bad = {
-      {"w1", 1e15}, {"w1", 0.5}, {"w2", 1e308}, {"eps", 2e6}, {"dw1", -1.0}, {"dw2", 1e7},
-      {"eps_decrement", -0.5}, {"robot_radius", 50.0}, {"robot_radius", 100.0}, {"turning_radius", 0.0},
-      {"turning_radius", 1e3}};
+  const std::vector<std::pair<std::string, double>> bad = {{"w1", 1e15},
+                                                           {"w1", 0.5},
+                                                           {"w2", 1e308},
+                                                           {"eps", 2e6},
+                                                           {"dw1", -1.0},
+                                                           {"dw2", 1e7},
+                                                           {"eps_decrement", -0.5},
+                                                           {"robot_radius", 50.0},
+                                                           {"robot_radius", 100.0},
+                                                           {"turning_radius", 0.0},
+                                                           {"turning_radius", 1e3}};
   for (const auto& [name, value] : bad) {
     pnh.setParam(name, value);
     try {

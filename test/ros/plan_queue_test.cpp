@@ -34,7 +34,8 @@ TEST(ConcurrentPlanQueue, RunsOneAtATimeInOrderAndRefusesBeyondTheBound) {
     return [&, id] {
       const int now = ++concurrent;
       int seen = max_concurrent.load();
-      while (now > seen && !max_concurrent.compare_exchange_weak(seen, now)) {}
+      while (now > seen && !max_concurrent.compare_exchange_weak(seen, now)) {
+      }
       gate.opened.wait();
       {
         std::lock_guard<std::mutex> lock(m);
@@ -103,10 +104,11 @@ TEST(ConcurrentPlanQueue, DestructionRunsWaitingJobs) {
   std::atomic<int> ran{0};
   {
     PlanQueue queue(3);
-    for (int i = 0; i < 4; ++i) ASSERT_TRUE(queue.submit([&] {
-      std::this_thread::sleep_for(2ms);
-      ++ran;
-    }));
+    for (int i = 0; i < 4; ++i)
+      ASSERT_TRUE(queue.submit([&] {
+        std::this_thread::sleep_for(2ms);
+        ++ran;
+      }));
   }
   EXPECT_EQ(ran.load(), 4) << "every accepted job gets its answer";
 }
@@ -129,7 +131,8 @@ TEST(ConcurrentPlanQueue, ManySubmittersAtOnce) {
             if (++running > 1) ++overlap;
             const std::size_t w = queue.waiting();
             std::size_t seen = max_waiting_seen.load();
-            while (w > seen && !max_waiting_seen.compare_exchange_weak(seen, w)) {}
+            while (w > seen && !max_waiting_seen.compare_exchange_weak(seen, w)) {
+            }
             std::this_thread::yield();
             --running;
             ++ran;

@@ -32,8 +32,8 @@ namespace {
 using Client = actionlib::SimpleActionClient<PlanAnytimeAction>;
 using Clock = std::chrono::steady_clock;
 using Status = Plan::Response;
-constexpr double kResolution = 0.05;   // the test map's
-constexpr int kLethal = 65;            // the test config's lethal_threshold
+constexpr double kResolution = 0.05;  // the test map's
+constexpr int kLethal = 65;           // the test config's lethal_threshold
 constexpr double kHeadingBin = 2 * M_PI / 16;
 
 ros::NodeHandle* g_nh = nullptr;
@@ -69,9 +69,8 @@ std::vector<PlanSolution> solutionsOf(std::uint32_t request_id, std::size_t expe
   return out;
 }
 
-Plan::Response plan(const geometry_msgs::PoseStamped& start,
-                    const geometry_msgs::PoseStamped& goal, double budget,
-                    const std::string& algorithm = "", double w1 = 0, double w2 = 0,
+Plan::Response plan(const geometry_msgs::PoseStamped& start, const geometry_msgs::PoseStamped& goal,
+                    double budget, const std::string& algorithm = "", double w1 = 0, double w2 = 0,
                     double goal_tolerance = 0) {
   Plan srv;
   srv.request.start = start;
@@ -112,9 +111,9 @@ void expectValidPath(const nav_msgs::Path& path, const geometry_msgs::PoseStampe
                        first.position.y - start.pose.position.y),
             kResolution);
   EXPECT_LE(angleDiff(yawOf(first), yawOf(start.pose)), kHeadingBin / 2 + 1e-6);
-  EXPECT_LE(std::hypot(last.position.x - goal.pose.position.x,
-                       last.position.y - goal.pose.position.y),
-            kResolution);
+  EXPECT_LE(
+      std::hypot(last.position.x - goal.pose.position.x, last.position.y - goal.pose.position.y),
+      kResolution);
   EXPECT_LE(angleDiff(yawOf(last), yawOf(goal.pose)), kHeadingBin / 2 + 1e-6);
   for (const auto& p : path.poses) EXPECT_EQ(p.header.frame_id, "map");
   const std::string collision = checkPathCollisionFree(path, map, testFootprint(), kLethal);
@@ -205,8 +204,8 @@ TEST(PlannerNodelet, PlanSucceedsWithAValidPathAndStreamsItsSolutions) {
   auto latched = ros::topic::waitForMessage<nav_msgs::Path>("/planner/plan", ros::Duration(5));
   ASSERT_TRUE(latched);
   EXPECT_EQ(latched->poses.size(), res.path.poses.size());
-  auto markers = ros::topic::waitForMessage<visualization_msgs::MarkerArray>(
-      "/planner/footprints", ros::Duration(5));
+  auto markers = ros::topic::waitForMessage<visualization_msgs::MarkerArray>("/planner/footprints",
+                                                                             ros::Duration(5));
   ASSERT_TRUE(markers);
   bool footprints = false, start = false, goal = false;
   for (const auto& m : markers->markers) {
@@ -287,7 +286,8 @@ TEST(PlannerNodelet, ActionSendsOneFeedbackPerSolution) {
   std::unique_lock<std::mutex> lock(m);
   // Feedback and result travel on separate topics, so the last feedback may arrive after the
   // result: give it time (a missing one still fails below).
-  cv.wait_for(lock, std::chrono::seconds(5), [&] { return feedback.size() >= result->solutions.size(); });
+  cv.wait_for(lock, std::chrono::seconds(5),
+              [&] { return feedback.size() >= result->solutions.size(); });
   ASSERT_EQ(feedback.size(), result->solutions.size());
   for (std::size_t i = 0; i < feedback.size(); ++i) {
     EXPECT_DOUBLE_EQ(feedback[i].cost, result->solutions[i].cost);
@@ -325,7 +325,8 @@ TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
       });
   {
     std::unique_lock<std::mutex> lock(m);
-    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(30), [&] { return !feedback.empty() || done; }));
+    ASSERT_TRUE(
+        cv.wait_for(lock, std::chrono::seconds(30), [&] { return !feedback.empty() || done; }));
     ASSERT_FALSE(done) << "the maze search finished before it could be cancelled: make it harder";
   }
   ros::WallDuration(0.05).sleep();  // cancel in the middle of an improvement, not right after one
@@ -350,7 +351,8 @@ TEST(PlannerNodelet, CancelStopsWithinFiftyMillisecondsWithTheBestPath) {
   EXPECT_EQ(result->status, PlanAnytimeResult::CANCELLED) << result->message;
   ASSERT_FALSE(result->solutions.empty());
   std::unique_lock<std::mutex> lock(m);
-  cv.wait_for(lock, std::chrono::seconds(5), [&] { return feedback.size() >= result->solutions.size(); });
+  cv.wait_for(lock, std::chrono::seconds(5),
+              [&] { return feedback.size() >= result->solutions.size(); });
   EXPECT_EQ(result->solutions.size(), feedback.size());
   EXPECT_DOUBLE_EQ(result->cost, feedback.back().cost) << "the best path so far";
   expectValidPath(result->path, kMazeStart, kMazeGoal, testMap());
@@ -463,7 +465,8 @@ TEST(PlannerNodelet, GoalToleranceReplacesAnObstructedGoalByAReachableOne) {
 
 // `map` with every cell whose centre lies inside the footprint at `p`, grown by `margin` metres
 // on each side, made free: the obstacle cells a start escape may cross.
-nav_msgs::OccupancyGrid clearedUnder(nav_msgs::OccupancyGrid map, const geometry_msgs::Pose& p, double margin) {
+nav_msgs::OccupancyGrid clearedUnder(nav_msgs::OccupancyGrid map, const geometry_msgs::Pose& p,
+                                     double margin) {
   std::vector<std::array<double, 2>> poly = testFootprint();
   const double yaw = yawOf(p), c = std::cos(yaw), sn = std::sin(yaw);
   for (auto& v : poly) {
@@ -477,8 +480,9 @@ nav_msgs::OccupancyGrid clearedUnder(nav_msgs::OccupancyGrid map, const geometry
     const double y = map.info.origin.position.y + (k / w + 0.5) * r;
     bool inside = false;  // even-odd rule
     for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-      if ((poly[i][1] > y) != (poly[j][1] > y) &&
-          x < poly[i][0] + (y - poly[i][1]) * (poly[j][0] - poly[i][0]) / (poly[j][1] - poly[i][1])) {
+      if ((poly[i][1] > y) != (poly[j][1] > y) && x < poly[i][0] + (y - poly[i][1]) *
+                                                                       (poly[j][0] - poly[i][0]) /
+                                                                       (poly[j][1] - poly[i][1])) {
         inside = !inside;
       }
     }
@@ -511,15 +515,19 @@ void expectEscape(const Response& res, const geometry_msgs::PoseStamped& start,
   EXPECT_NE(res.message.find("relative to the optimum"), std::string::npos) << res.message;
   EXPECT_EQ(res.escape_end.header.frame_id, "map");
   const auto& e = res.escape_end.pose.position;
-  EXPECT_LE(std::hypot(e.x - start.pose.position.x, e.y - start.pose.position.y), tolerance + kResolution);
+  EXPECT_LE(std::hypot(e.x - start.pose.position.x, e.y - start.pose.position.y),
+            tolerance + kResolution);
   const std::size_t k = indexOf(res.path, res.escape_end.pose);
   ASSERT_LT(k, res.path.poses.size()) << "escape_end is not on the path";
   ASSERT_GT(k, 0u);
   nav_msgs::Path escape = res.path, rest = res.path;
   escape.poses.resize(k + 1);
   rest.poses.erase(rest.poses.begin(), rest.poses.begin() + static_cast<std::ptrdiff_t>(k));
-  EXPECT_NE(checkPathCollisionFree(escape, testMap(), testFootprint(), kLethal), "") << "the start collides";
-  EXPECT_EQ(checkPathCollisionFree(escape, clearedUnder(testMap(), start.pose, kResolution), testFootprint(), kLethal), "")
+  EXPECT_NE(checkPathCollisionFree(escape, testMap(), testFootprint(), kLethal), "")
+      << "the start collides";
+  EXPECT_EQ(checkPathCollisionFree(escape, clearedUnder(testMap(), start.pose, kResolution),
+                                   testFootprint(), kLethal),
+            "")
       << "the escape touches an obstacle the robot was not on";
   expectValidPath(rest, res.escape_end, goal, testMap());
   EXPECT_LE(std::hypot(res.path.poses.front().pose.position.x - start.pose.position.x,
@@ -568,7 +576,8 @@ TEST(PlannerNodelet, StartToleranceLeavesAStartInCollision) {
   EXPECT_TRUE(mp.response.plan.poses.empty());
   // A bad tolerance.
   srv.request.start = at_block;
-  for (const double bad : {-0.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {-0.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     srv.request.start_tolerance = bad;
     ASSERT_TRUE(ros::service::call("/planner/plan", srv));
     EXPECT_EQ(srv.response.status, Status::INVALID_REQUEST) << bad;
@@ -594,9 +603,11 @@ TEST(PlannerNodelet, IgnoreGoalHeadingEndsWithTheCheapestHeading) {
   EXPECT_LT(res.solutions.back().lattice_cost, fixed.solutions.back().lattice_cost);
   EXPECT_FALSE(res.goal_substituted);
   EXPECT_EQ(res.planned_goal.header.frame_id, "map");
-  EXPECT_LE(angleDiff(yawOf(res.planned_goal.pose), 0.0), kHeadingBin / 2) << "it arrives facing ahead";
+  EXPECT_LE(angleDiff(yawOf(res.planned_goal.pose), 0.0), kHeadingBin / 2)
+      << "it arrives facing ahead";
   expectValidPath(res.path, kRoomStart, res.planned_goal, testMap());
-  EXPECT_LE(std::hypot(res.planned_goal.pose.position.x - 1.5, res.planned_goal.pose.position.y), kResolution);
+  EXPECT_LE(std::hypot(res.planned_goal.pose.position.x - 1.5, res.planned_goal.pose.position.y),
+            kResolution);
 }
 
 TEST(PlannerNodelet, StartFromTfAndGoalInAnotherFrame) {
@@ -618,8 +629,7 @@ TEST(PlannerNodelet, StartFromTfAndGoalInAnotherFrame) {
 
 TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto with_quaternion = [](geometry_msgs::PoseStamped p, double x, double y, double z,
-                            double w) {
+  auto with_quaternion = [](geometry_msgs::PoseStamped p, double x, double y, double z, double w) {
     p.pose.orientation.x = x;
     p.pose.orientation.y = y;
     p.pose.orientation.z = z;
@@ -638,7 +648,8 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
   auto nan_position = kRoomStart;
   nan_position.pose.position.x = nan;
   const std::vector<Case> cases = {
-      {"start in an obstacle", pose(2.5, 4.0, 0, "map"), kRoomGoal, 2, "", 0, Status::INVALID_START},
+      {"start in an obstacle", pose(2.5, 4.0, 0, "map"), kRoomGoal, 2, "", 0,
+       Status::INVALID_START},
       {"goal in an obstacle", kRoomStart, pose(2.5, 4.0, 0, "map"), 2, "", 0, Status::INVALID_GOAL},
       {"goal in a wall", kRoomStart, pose(5.0, 5.0, 0, "map"), 2, "", 0, Status::INVALID_GOAL},
       {"start outside the map", pose(-5.0, 0.0, 0, "map"), kRoomGoal, 2, "", 0, Status::OUT_OF_MAP},
@@ -647,8 +658,8 @@ TEST(PlannerNodelet, BadRequestsGetTheirStatusAndTheNodeStaysUp) {
        Status::INVALID_START},
       {"zero start quaternion", with_quaternion(kRoomStart, 0, 0, 0, 0), kRoomGoal, 2, "", 0,
        Status::INVALID_START},
-      {"non-normalised goal quaternion", kRoomStart, with_quaternion(kRoomGoal, 0, 0, 0, 2), 2,
-       "", 0, Status::INVALID_GOAL},
+      {"non-normalised goal quaternion", kRoomStart, with_quaternion(kRoomGoal, 0, 0, 0, 2), 2, "",
+       0, Status::INVALID_GOAL},
       {"slightly non-normalised goal quaternion", kRoomStart,
        with_quaternion(kRoomGoal, 0, 0, 0, 1.01), 2, "", 0, Status::INVALID_GOAL},
       {"NaN start position", nan_position, kRoomGoal, 2, "", 0, Status::INVALID_START},
@@ -751,7 +762,7 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
 
 // The update that turns map `from` into `to`: the bounding box of the cells that differ.
 map_msgs::OccupancyGridUpdate updateBetween(const nav_msgs::OccupancyGrid& from,
-                                           const nav_msgs::OccupancyGrid& to) {
+                                            const nav_msgs::OccupancyGrid& to) {
   const int w = static_cast<int>(from.info.width), h = static_cast<int>(from.info.height);
   int x0 = w, y0 = h, x1 = -1, y1 = -1;
   for (int y = 0; y < h; ++y) {
@@ -900,7 +911,8 @@ TEST(PlannerNodelet, AMapInAnotherFrameIsTransformedOrRefused) {
   nav_msgs::Path in_odom_frame = res.path;
   const double c = std::cos(0.3), s = std::sin(0.3);
   for (auto& p : in_odom_frame.poses) {  // map -> odom: the inverse of the static transform
-    const double x = p.pose.position.x - 0.5, y = p.pose.position.y + 0.5, yaw = yawOf(p.pose) - 0.3;
+    const double x = p.pose.position.x - 0.5, y = p.pose.position.y + 0.5,
+                 yaw = yawOf(p.pose) - 0.3;
     p.pose.position.x = c * x + s * y;
     p.pose.position.y = -s * x + c * y;
     p.pose.orientation.z = std::sin(yaw / 2);
@@ -927,8 +939,8 @@ int main(int argc, char** argv) {
   amha_planner::test::g_nh = &nh;
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  ros::Subscriber solutions = nh.subscribe("/planner/solutions", 1000,
-                                            &amha_planner::test::onSolution);
+  ros::Subscriber solutions =
+      nh.subscribe("/planner/solutions", 1000, &amha_planner::test::onSolution);
   amha_planner::test::g_map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/map", 1, true);
   amha_planner::test::g_map_updates_pub =
       nh.advertise<map_msgs::OccupancyGridUpdate>("/map_updates", 100);

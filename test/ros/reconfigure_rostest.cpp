@@ -1,8 +1,8 @@
-// Integration test of dynamic_reconfigure on amha_planner/PlannerNodelet (test/ros/reconfigure.test):
-// parameters changed through ~set_parameters between requests take effect on the next request
-// (search parameters at once, robot and map parameters by a rebuild the next request waits
-// for), never on a request already planning; bad values are refused with a logged message and
-// leave the parameters as they were.
+// Integration test of dynamic_reconfigure on amha_planner/PlannerNodelet
+// (test/ros/reconfigure.test): parameters changed through ~set_parameters between requests take
+// effect on the next request (search parameters at once, robot and map parameters by a rebuild the
+// next request waits for), never on a request already planning; bad values are refused with a
+// logged message and leave the parameters as they were.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -64,7 +64,9 @@ struct Change {
   Change& set(const std::string& name, double v) { return add(config.doubles, name, v); }
   Change& set(const std::string& name, int v) { return add(config.ints, name, v); }
   Change& set(const std::string& name, bool v) { return add(config.bools, name, v); }
-  Change& set(const std::string& name, const char* v) { return add(config.strs, name, std::string(v)); }
+  Change& set(const std::string& name, const char* v) {
+    return add(config.strs, name, std::string(v));
+  }
 
  private:
   template <class Parameter, class Value>
@@ -132,7 +134,8 @@ const geometry_msgs::PoseStamped kMazeGoal = pose(27.5, 16.5, 0.0, "map");
 
 TEST(Reconfigure, SearchParametersApplyToTheNextRequest) {
   // The loaded configuration: A-MHA* with the lattice's preset weights (w1 = 1.1, w2 = 5).
-  const amha::PlannerConfig preset = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar);
+  const amha::PlannerConfig preset =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar);
   auto res = plan(kStart, kRoomGoal);
   ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
   ASSERT_FALSE(res.solutions.empty());
@@ -142,7 +145,8 @@ TEST(Reconfigure, SearchParametersApplyToTheNextRequest) {
   // What is in force is what the ~parameters said (the footprint in costmap_2d's string form,
   // unset weights as -1, the algorithm's preset), not the .cfg's defaults.
   auto in_force = apply(Change());
-  EXPECT_EQ(strIn(in_force, "footprint"), "[[0.25, 0.18], [0.25, -0.18], [-0.25, -0.18], [-0.25, 0.18]]");
+  EXPECT_EQ(strIn(in_force, "footprint"),
+            "[[0.25, 0.18], [0.25, -0.18], [-0.25, -0.18], [-0.25, 0.18]]");
   EXPECT_DOUBLE_EQ(doubleIn(in_force, "w1"), -1.0);
   EXPECT_DOUBLE_EQ(doubleIn(in_force, "default_time_budget"), 2.0);
   EXPECT_EQ(intIn(in_force, "num_headings"), 16);
@@ -180,7 +184,8 @@ TEST(Reconfigure, SearchParametersApplyToTheNextRequest) {
   apply(Change().set("start_tolerance", 0.5));
   ASSERT_TRUE(ros::service::call("/planner/make_plan", mp));
   EXPECT_FALSE(mp.response.plan.poses.empty()) << "left with one";
-  apply(Change().set("start_tolerance", 0.0).set("algorithm", "amha").set("w1", 5.0).set("w2", 5.0));
+  apply(
+      Change().set("start_tolerance", 0.0).set("algorithm", "amha").set("w1", 5.0).set("w2", 5.0));
 }
 
 TEST(Reconfigure, BadValuesAreRefusedWithAMessage) {
@@ -193,15 +198,30 @@ TEST(Reconfigure, BadValuesAreRefusedWithAMessage) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<Case> cases = {
       {"a weight below 1", Change().set("w1", 0.5), {"refused", "/planner/w1", "nor >= 1"}},
-      {"a NaN budget", Change().set("default_time_budget", nan), {"refused", "default_time_budget", "expected a number"}},
-      {"an unknown algorithm", Change().set("algorithm", "dijkstra"), {"refused", "unknown algorithm 'dijkstra'"}},
-      {"headings not a multiple of 8", Change().set("num_headings", 12), {"refused", "num_headings", "multiple of 8"}},
-      {"a two-point footprint", Change().set("footprint", "[[0, 0], [1, 1]]"), {"refused", "footprint", "at least 3"}},
-      {"a malformed footprint", Change().set("footprint", "[[0, 0], [1, 1]"), {"refused", "footprint", "unbalanced"}},
-      {"a flat footprint", Change().set("footprint", "[[0, 0], [1, 0], [2, 0]]"), {"refused", "area"}},
-      {"a missing primitive file", Change().set("mprim_file", "/nonexistent/x.mprim"), {"refused", "x.mprim"}},
+      {"a NaN budget",
+       Change().set("default_time_budget", nan),
+       {"refused", "default_time_budget", "expected a number"}},
+      {"an unknown algorithm",
+       Change().set("algorithm", "dijkstra"),
+       {"refused", "unknown algorithm 'dijkstra'"}},
+      {"headings not a multiple of 8",
+       Change().set("num_headings", 12),
+       {"refused", "num_headings", "multiple of 8"}},
+      {"a two-point footprint",
+       Change().set("footprint", "[[0, 0], [1, 1]]"),
+       {"refused", "footprint", "at least 3"}},
+      {"a malformed footprint",
+       Change().set("footprint", "[[0, 0], [1, 1]"),
+       {"refused", "footprint", "unbalanced"}},
+      {"a flat footprint",
+       Change().set("footprint", "[[0, 0], [1, 0], [2, 0]]"),
+       {"refused", "area"}},
+      {"a missing primitive file",
+       Change().set("mprim_file", "/nonexistent/x.mprim"),
+       {"refused", "x.mprim"}},
       // The test map is 30 x 20 m.
-      {"a robot wider than the map", Change().set("footprint", "[[12, 12], [12, -12], [-12, -12], [-12, 12]]"),
+      {"a robot wider than the map",
+       Change().set("footprint", "[[12, 12], [12, -12], [-12, -12], [-12, 12]]"),
        {"refused", "footprint", "wider than the current map"}},
       {"a bad value among good ones", Change().set("w2", 3.0).set("eps", 0.9), {"refused", "eps"}},
   };
@@ -209,7 +229,8 @@ TEST(Reconfigure, BadValuesAreRefusedWithAMessage) {
     const auto after = apply(c.change);
     EXPECT_EQ(after.doubles.size(), before.doubles.size()) << c.what;
     for (std::size_t i = 0; i < before.doubles.size() && i < after.doubles.size(); ++i) {
-      EXPECT_DOUBLE_EQ(after.doubles[i].value, before.doubles[i].value) << c.what << ": " << before.doubles[i].name;
+      EXPECT_DOUBLE_EQ(after.doubles[i].value, before.doubles[i].value)
+          << c.what << ": " << before.doubles[i].name;
     }
     for (std::size_t i = 0; i < before.strs.size() && i < after.strs.size(); ++i) {
       EXPECT_EQ(after.strs[i].value, before.strs[i].value) << c.what << ": " << before.strs[i].name;
@@ -311,7 +332,9 @@ int main(int argc, char** argv) {
     srv.request.start = amha_planner::test::kStart;
     srv.request.goal = amha_planner::test::pose(1.0, 0.0, 0.0, "map");
     srv.request.time_budget = 2.0;
-    if (ros::service::call("/planner/plan", srv) && srv.response.status == amha_planner::Plan::Response::SUCCESS) break;
+    if (ros::service::call("/planner/plan", srv) &&
+        srv.response.status == amha_planner::Plan::Response::SUCCESS)
+      break;
     ros::WallDuration(0.1).sleep();
     ready = i + 1 < 600;
   }

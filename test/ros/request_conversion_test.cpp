@@ -33,8 +33,8 @@ Message filledIn() {
 
 /// Every field of a request, by name (printed when a comparison fails).
 auto fields(const PlannerRequest& r) {
-  return std::tie(r.start, r.goal, r.time_budget, r.algorithm, r.w1, r.w2, r.goal_tolerance, r.ignore_goal_heading,
-                  r.start_tolerance);
+  return std::tie(r.start, r.goal, r.time_budget, r.algorithm, r.w1, r.w2, r.goal_tolerance,
+                  r.ignore_goal_heading, r.start_tolerance);
 }
 
 TEST(PlannerRequest, ThePlanServiceAndTheActionGoalGiveEveryField) {
@@ -103,13 +103,16 @@ TEST(PlannerRequest, BadRequestsAreRefusedWithTheirReasonInOrder) {
   // whatever those after it are.
   const std::vector<std::pair<double PlannerRequest::*, std::string>> checked = {
       {&PlannerRequest::time_budget, "time_budget must be finite and >= 0 (0: the default)"},
-      {&PlannerRequest::goal_tolerance, "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)"},
-      {&PlannerRequest::start_tolerance, "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)"}};
+      {&PlannerRequest::goal_tolerance,
+       "goal_tolerance must be finite and >= 0 (metres; 0: the exact goal)"},
+      {&PlannerRequest::start_tolerance,
+       "start_tolerance must be finite and >= 0 (metres; 0: ~start_tolerance)"}};
   for (std::size_t i = 0; i < checked.size(); ++i) {
     for (double bad : {-0.1, -1.0, nan, inf}) {
       r = PlannerRequest{};
       r.*checked[i].first = bad;
-      for (std::size_t later = i + 1; later < checked.size(); ++later) r.*checked[later].first = -1.0;
+      for (std::size_t later = i + 1; later < checked.size(); ++later)
+        r.*checked[later].first = -1.0;
       EXPECT_FALSE(queryFor(r, p, &q, &error));
       EXPECT_EQ(error, checked[i].second) << bad;
     }

@@ -39,8 +39,10 @@ PlanSolution solutionMsg(double cost, double bound, double certified) {
 /// header and the messages of `solutions` solutions (the last the best: cost 12.3456, bound
 /// 1.5, certified 1.25).
 Plan::Response streamed(int solutions) {
-  Plan::Response res = responseWithoutPath(9, Status::INTERNAL_ERROR, "", "map", ros::Time(12, 500));
-  for (int i = solutions; i > 0; --i) res.solutions.push_back(solutionMsg(12.3456 + i, 1.5 + i, 1.25 + i));
+  Plan::Response res =
+      responseWithoutPath(9, Status::INTERNAL_ERROR, "", "map", ros::Time(12, 500));
+  for (int i = solutions; i > 0; --i)
+    res.solutions.push_back(solutionMsg(12.3456 + i, 1.5 + i, 1.25 + i));
   return res;
 }
 
@@ -70,12 +72,18 @@ Plan::Response complete(const lat::PlanResult& result, int solutions,
 
 TEST(PlanResponse, EveryStatusCodeHasItsName) {
   const std::vector<std::pair<std::uint32_t, std::string>> codes = {
-      {Status::SUCCESS, "SUCCESS"},           {Status::CANCELLED, "CANCELLED"},
-      {Status::INVALID_START, "INVALID_START"}, {Status::INVALID_GOAL, "INVALID_GOAL"},
-      {Status::NO_PATH_FOUND, "NO_PATH_FOUND"}, {Status::TIME_EXHAUSTED, "TIME_EXHAUSTED"},
-      {Status::MEMORY_EXHAUSTED, "MEMORY_EXHAUSTED"}, {Status::TF_ERROR, "TF_ERROR"},
-      {Status::NO_MAP, "NO_MAP"},             {Status::INVALID_REQUEST, "INVALID_REQUEST"},
-      {Status::INTERNAL_ERROR, "INTERNAL_ERROR"}, {Status::OUT_OF_MAP, "OUT_OF_MAP"},
+      {Status::SUCCESS, "SUCCESS"},
+      {Status::CANCELLED, "CANCELLED"},
+      {Status::INVALID_START, "INVALID_START"},
+      {Status::INVALID_GOAL, "INVALID_GOAL"},
+      {Status::NO_PATH_FOUND, "NO_PATH_FOUND"},
+      {Status::TIME_EXHAUSTED, "TIME_EXHAUSTED"},
+      {Status::MEMORY_EXHAUSTED, "MEMORY_EXHAUSTED"},
+      {Status::TF_ERROR, "TF_ERROR"},
+      {Status::NO_MAP, "NO_MAP"},
+      {Status::INVALID_REQUEST, "INVALID_REQUEST"},
+      {Status::INTERNAL_ERROR, "INTERNAL_ERROR"},
+      {Status::OUT_OF_MAP, "OUT_OF_MAP"},
       {Status::BUSY, "BUSY"}};
   for (const auto& [code, name] : codes) EXPECT_EQ(statusCodeName(code), name) << code;
   EXPECT_STREQ(statusCodeName(1), "UNKNOWN");
@@ -120,13 +128,17 @@ TEST(PlanResponse, EverySearchStatusWithoutASolutionGivesItsCodeAndMessage) {
   const std::vector<Case> cases = {
       {SearchStatus::kNoSolution, Status::NO_PATH_FOUND,
        "no path: the goal cannot be reached from the start on this map"},
-      {SearchStatus::kTimeLimit, Status::TIME_EXHAUSTED, "time budget of 2.50 s used up before any path was found"},
+      {SearchStatus::kTimeLimit, Status::TIME_EXHAUSTED,
+       "time budget of 2.50 s used up before any path was found"},
       {SearchStatus::kMemoryLimit, Status::MEMORY_EXHAUSTED,
        "memory cap of 1024 MB (~max_memory_mb) reached before any path was found"},
       {SearchStatus::kCancelled, Status::CANCELLED, "cancelled before any path was found"},
-      {SearchStatus::kProvenOptimal, Status::INTERNAL_ERROR, "the search ended (proven_optimal) without a solution"},
-      {SearchStatus::kBoundReached, Status::INTERNAL_ERROR, "the search ended (bound_reached) without a solution"},
-      {SearchStatus::kExpansionLimit, Status::INTERNAL_ERROR, "the search ended (expansion_limit) without a solution"},
+      {SearchStatus::kProvenOptimal, Status::INTERNAL_ERROR,
+       "the search ended (proven_optimal) without a solution"},
+      {SearchStatus::kBoundReached, Status::INTERNAL_ERROR,
+       "the search ended (bound_reached) without a solution"},
+      {SearchStatus::kExpansionLimit, Status::INTERNAL_ERROR,
+       "the search ended (expansion_limit) without a solution"},
   };
   for (const Case& c : cases) {
     const Plan::Response res = complete(searchEnded(c.status, 0), 0);
@@ -192,7 +204,8 @@ TEST(PlanResponse, TheBestSolutionGivesThePathCostAndBounds) {
   EXPECT_FALSE(res.goal_substituted);
   EXPECT_FALSE(res.start_escaped);
   EXPECT_TRUE(res.escape_end.header.frame_id.empty());
-  EXPECT_EQ(res.message, "optimal path: 3 solution(s), best cost 13.346 m, bound 2.50, certified 2.25");
+  EXPECT_EQ(res.message,
+            "optimal path: 3 solution(s), best cost 13.346 m, bound 2.50, certified 2.25");
 }
 
 TEST(PlanResponse, ASmoothedBestSolutionQuotesItsLatticeCost) {
@@ -200,8 +213,9 @@ TEST(PlanResponse, ASmoothedBestSolutionQuotesItsLatticeCost) {
   res.solutions.back().smoothed = true;
   res.solutions.back().lattice_cost = 14.0;
   completeResponse(searchEnded(SearchStatus::kBoundReached, 1), {{0, 0, 0}}, context(), &res);
-  EXPECT_EQ(res.message, "path within the requested bound: 1 solution(s), best cost 13.346 m, bound 2.50, "
-                         "certified 2.25 (smoothed; lattice path 14.000 m)");
+  EXPECT_EQ(res.message,
+            "path within the requested bound: 1 solution(s), best cost 13.346 m, bound 2.50, "
+            "certified 2.25 (smoothed; lattice path 14.000 m)");
 }
 
 TEST(PlanResponse, TheStartEscapeAndTheGoalSubstituteAreToldAfterTheOutcome) {
@@ -213,8 +227,11 @@ TEST(PlanResponse, TheStartEscapeAndTheGoalSubstituteAreToldAfterTheOutcome) {
   r.message = "goal (3.100, 4.000) is in collision; planning to (3.000, 4.000) instead";
   const Plan::Response res = complete(r, 1);
   EXPECT_EQ(res.status, Status::SUCCESS);
-  EXPECT_EQ(res.message, "time budget of 2.50 s used up; returning the best path so far: 1 solution(s), best cost "
-                         "13.346 m, bound 2.50, certified 2.25; " + r.escape_message + "; " + r.message);
+  EXPECT_EQ(
+      res.message,
+      "time budget of 2.50 s used up; returning the best path so far: 1 solution(s), best cost "
+      "13.346 m, bound 2.50, certified 2.25; " +
+          r.escape_message + "; " + r.message);
   EXPECT_TRUE(res.start_escaped);
   EXPECT_EQ(res.escape_end.header.frame_id, "map");
   EXPECT_DOUBLE_EQ(res.escape_end.pose.position.x, 1.0) << "the path's first collision-free pose";
@@ -235,13 +252,16 @@ TEST(PlanResponse, RepliesWithoutPlanningCarryTheirStatusAndAnEmptyPath) {
   const Plan::Response busy = busyResponse(17, 2, "world");
   EXPECT_EQ(busy.request_id, 17u);
   EXPECT_EQ(busy.status, Status::BUSY);
-  EXPECT_EQ(busy.message, "busy: one request is planning and 2 are waiting (~max_queued_requests); try again later");
+  EXPECT_EQ(
+      busy.message,
+      "busy: one request is planning and 2 are waiting (~max_queued_requests); try again later");
   EXPECT_EQ(busy.path.header.frame_id, "world");
   EXPECT_EQ(busy.path.header.stamp, ros::Time());
   EXPECT_TRUE(busy.path.poses.empty());
   EXPECT_TRUE(busy.solutions.empty());
 
-  const Plan::Response cancelled = responseWithoutPath(3, Status::CANCELLED, "cancelled", "map", ros::Time(5, 0));
+  const Plan::Response cancelled =
+      responseWithoutPath(3, Status::CANCELLED, "cancelled", "map", ros::Time(5, 0));
   EXPECT_EQ(cancelled.request_id, 3u);
   EXPECT_EQ(cancelled.status, Status::CANCELLED);
   EXPECT_EQ(cancelled.message, "cancelled");
@@ -278,8 +298,9 @@ TEST(PlanResponse, MakePlanGetsThePathOnSuccessOnlyAlwaysInTheGlobalFrame) {
   const nav_msgs::GetPlan::Response plan = makePlanResponse(ok, "map");
   EXPECT_EQ(plan.plan, ok.path);
 
-  for (const Plan::Response& failed : {complete(searchEnded(SearchStatus::kCancelled, 1), 1),
-                                       responseWithoutPath(4, Status::TF_ERROR, "no tf", "", ros::Time(7, 0))}) {
+  for (const Plan::Response& failed :
+       {complete(searchEnded(SearchStatus::kCancelled, 1), 1),
+        responseWithoutPath(4, Status::TF_ERROR, "no tf", "", ros::Time(7, 0))}) {
     const nav_msgs::GetPlan::Response empty = makePlanResponse(failed, "map");
     EXPECT_TRUE(empty.plan.poses.empty()) << failed.message;
     EXPECT_EQ(empty.plan.header.frame_id, "map");

@@ -46,27 +46,27 @@ void MapBuilder::box(double x0, double y0, double x1, double y1, double t) {
 
 nav_msgs::OccupancyGrid testMap() {
   static const nav_msgs::OccupancyGrid map = [] {
-  MapBuilder m(-1.0, -2.0, 0.05, 600, 400, "map");
-  m.box(-1.0, -2.0, 29.0, 18.0, 0.2);       // outer wall
-  // Rooms: a wall at x = 5 with doors at y in [1, 2.2] and [12, 13.5].
-  m.fill(4.9, -2.0, 5.1, 1.0, 100);
-  m.fill(4.9, 2.2, 5.1, 12.0, 100);
-  m.fill(4.9, 13.5, 5.1, 18.0, 100);
-  m.fill(2.0, 3.0, 3.0, 5.0, 100);          // a block
-  m.box(7.0, 14.0, 9.0, 16.0, 0.2);         // a closed pocket: (8, 15) is free but unreachable
-  // The maze: a wall at x = 11 with a door at y in [7, 9], then a serpentine of walls open
-  // alternately at the top and at the bottom.
-  m.fill(10.9, -2.0, 11.1, 7.0, 100);
-  m.fill(10.9, 9.0, 11.1, 18.0, 100);
-  const double walls[] = {13.5, 16.0, 18.5, 21.0, 23.5, 26.0};
-  for (int i = 0; i < 6; ++i) {
-    if (i % 2 == 0) {
-      m.fill(walls[i] - 0.1, -2.0, walls[i] + 0.1, 16.0, 100);  // open at the top
-    } else {
-      m.fill(walls[i] - 0.1, 0.0, walls[i] + 0.1, 18.0, 100);   // open at the bottom
+    MapBuilder m(-1.0, -2.0, 0.05, 600, 400, "map");
+    m.box(-1.0, -2.0, 29.0, 18.0, 0.2);  // outer wall
+    // Rooms: a wall at x = 5 with doors at y in [1, 2.2] and [12, 13.5].
+    m.fill(4.9, -2.0, 5.1, 1.0, 100);
+    m.fill(4.9, 2.2, 5.1, 12.0, 100);
+    m.fill(4.9, 13.5, 5.1, 18.0, 100);
+    m.fill(2.0, 3.0, 3.0, 5.0, 100);   // a block
+    m.box(7.0, 14.0, 9.0, 16.0, 0.2);  // a closed pocket: (8, 15) is free but unreachable
+    // The maze: a wall at x = 11 with a door at y in [7, 9], then a serpentine of walls open
+    // alternately at the top and at the bottom.
+    m.fill(10.9, -2.0, 11.1, 7.0, 100);
+    m.fill(10.9, 9.0, 11.1, 18.0, 100);
+    const double walls[] = {13.5, 16.0, 18.5, 21.0, 23.5, 26.0};
+    for (int i = 0; i < 6; ++i) {
+      if (i % 2 == 0) {
+        m.fill(walls[i] - 0.1, -2.0, walls[i] + 0.1, 16.0, 100);  // open at the top
+      } else {
+        m.fill(walls[i] - 0.1, 0.0, walls[i] + 0.1, 18.0, 100);  // open at the bottom
+      }
     }
-  }
-  return m.grid;
+    return m.grid;
   }();
   return map;
 }
@@ -109,8 +109,10 @@ std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::O
       const double x = p.position.x + c * v[0] - s * v[1];
       const double y = p.position.y + s * v[0] + c * v[1];
       poly.push_back({x, y});
-      minx = std::min(minx, x); maxx = std::max(maxx, x);
-      miny = std::min(miny, y); maxy = std::max(maxy, y);
+      minx = std::min(minx, x);
+      maxx = std::max(maxx, x);
+      miny = std::min(miny, y);
+      maxy = std::max(maxy, y);
     }
     const int cx0 = static_cast<int>(std::floor((minx - ox) / r)) - 1;
     const int cx1 = static_cast<int>(std::floor((maxx - ox) / r)) + 1;
@@ -135,8 +137,9 @@ std::string checkPathCollisionFree(const nav_msgs::Path& path, const nav_msgs::O
 }
 
 bool sendAndAwaitFeedback(actionlib::SimpleActionClient<PlanAnytimeAction>& client,
-                          const geometry_msgs::PoseStamped& start, const geometry_msgs::PoseStamped& goal,
-                          double budget, std::atomic<int>& feedback) {
+                          const geometry_msgs::PoseStamped& start,
+                          const geometry_msgs::PoseStamped& goal, double budget,
+                          std::atomic<int>& feedback) {
   if (!client.waitForServer(ros::Duration(5))) return false;
   PlanAnytimeGoal g;
   g.start = start;

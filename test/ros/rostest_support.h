@@ -22,8 +22,8 @@ namespace test {
 /// An occupancy grid being drawn in world coordinates (0 free, 100 occupied).
 struct MapBuilder {
   nav_msgs::OccupancyGrid grid;
-  MapBuilder(double origin_x, double origin_y, double resolution, unsigned width,
-             unsigned height, const std::string& frame);
+  MapBuilder(double origin_x, double origin_y, double resolution, unsigned width, unsigned height,
+             const std::string& frame);
   /// Sets every cell whose centre lies in [x0, x1] x [y0, y1] to `value`.
   void fill(double x0, double y0, double x1, double y1, signed char value);
   /// A closed rectangular wall of the given thickness.
@@ -55,8 +55,9 @@ bool waitForSubscriber(const ros::Publisher& pub, double seconds);
 /// counting its feedback in `feedback` (which must outlive the client), and waits up to 30 s for
 /// the first: true once it came (the goal is then planning, or done).
 bool sendAndAwaitFeedback(actionlib::SimpleActionClient<PlanAnytimeAction>& client,
-                          const geometry_msgs::PoseStamped& start, const geometry_msgs::PoseStamped& goal,
-                          double budget, std::atomic<int>& feedback);
+                          const geometry_msgs::PoseStamped& start,
+                          const geometry_msgs::PoseStamped& goal, double budget,
+                          std::atomic<int>& feedback);
 
 geometry_msgs::PoseStamped pose(double x, double y, double yaw, const std::string& frame);
 double yawOf(const geometry_msgs::Pose& p);

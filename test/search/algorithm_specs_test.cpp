@@ -10,7 +10,8 @@ namespace {
 TEST(AlgorithmSpecs, OnlyTheMultiHeuristicSearchesReadInadmissibleHeuristics) {
   EXPECT_TRUE(algorithmSpecs(Algorithm::kAmhaStar).inadmissible_heuristics);
   EXPECT_TRUE(algorithmSpecs(Algorithm::kMhaStar).inadmissible_heuristics);
-  for (Algorithm a : {Algorithm::kAraStar, Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar}) {
+  for (Algorithm a :
+       {Algorithm::kAraStar, Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar}) {
     EXPECT_FALSE(algorithmSpecs(a).inadmissible_heuristics) << algorithmName(a);
     EXPECT_FALSE(algorithmSpecs(a).queue_schedule) << algorithmName(a);
   }

@@ -25,7 +25,8 @@ struct RecordingGraph : testing::ExplicitGraph {
   }
 };
 
-RecordingGraph graph(std::vector<std::vector<Edge>> adj, std::vector<HeuristicValue> h, StateId goal) {
+RecordingGraph graph(std::vector<std::vector<Edge>> adj, std::vector<HeuristicValue> h,
+                     StateId goal) {
   RecordingGraph g;
   g.adj = std::move(adj);
   for (HeuristicValue v : h) g.h.push_back({v});
@@ -44,7 +45,8 @@ SearchResult runAna(RecordingGraph& g) {
 // B and C are expanded again (e = 14.5, 28): the optimum 23.
 TEST(AnaStar, ExpandsAsThePaperWithReexpansionsAfterAGDrop) {
   enum : StateId { S = 0, G = 1, A = 2, B = 3, C = 4 };
-  RecordingGraph g = graph({{{A, 1}, {B, 10}}, {}, {{B, 1}}, {{C, 1}}, {{G, 20}}}, {4, 0, 3, 2, 1}, G);
+  RecordingGraph g =
+      graph({{{A, 1}, {B, 10}}, {}, {{B, 1}}, {{C, 1}}, {{G, 20}}}, {4, 0, 3, 2, 1}, G);
   const SearchResult r = runAna(g);
   ASSERT_EQ(r.solutions.size(), 2u);
   EXPECT_EQ(r.solutions[0].cost, 31);
@@ -55,7 +57,8 @@ TEST(AnaStar, ExpandsAsThePaperWithReexpansionsAfterAGDrop) {
   // Expansions S, B, C; the report re-reads the first solution's edges (S, B, C); expansions
   // A, B, C; the second solution's edges (S, A, B, C).
   EXPECT_EQ(g.expanded, (std::vector<StateId>{S, B, C, S, B, C, A, B, C, S, A, B, C}));
-  EXPECT_DOUBLE_EQ(r.solutions[1].nominal_bound, 10.0) << "E: the least e(s) expanded, e(A) = (31 - 1) / 3";
+  EXPECT_DOUBLE_EQ(r.solutions[1].nominal_bound, 10.0)
+      << "E: the least e(s) expanded, e(A) = (31 - 1) / 3";
 }
 
 // When G is infinite, ties in h go to the smaller g: S -> X (3), S -> Y (1), both h = 2;

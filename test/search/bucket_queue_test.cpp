@@ -30,8 +30,8 @@ TEST(BucketQueue, PopsInKeyThenHOrderNewestFirst) {
     popped.emplace_back(q.topKey(), q.topId());
     q.pop();
   }
-  const std::vector<std::pair<double, StateId>> expected = {
-      {0.0, 5}, {1.5, 4}, {1.5, 2}, {3.0, 3}, {3.0, 6}, {3.0, 1}};
+  const std::vector<std::pair<double, StateId>> expected = {{0.0, 5}, {1.5, 4}, {1.5, 2},
+                                                            {3.0, 3}, {3.0, 6}, {3.0, 1}};
   EXPECT_EQ(popped, expected);
 }
 
@@ -83,9 +83,9 @@ TEST(BucketQueue, ReportsTheMemoryItsNextPushNeeds) {
   EXPECT_GT(q.growthBytes(10.0, 3), 0u);  // nothing allocated yet
   q.push(10.0, 3, 1);
   EXPECT_GE(q.memoryBytes(), 64u + 11 * sizeof(std::uint32_t));
-  EXPECT_EQ(q.growthBytes(10.0, 3), 0u);     // room left in the stack's block
-  EXPECT_GT(q.growthBytes(1000.0, 3), 0u);   // the key array must grow
-  EXPECT_GT(q.growthBytes(10.0, 500), 0u);   // the key's stack array must grow
+  EXPECT_EQ(q.growthBytes(10.0, 3), 0u);    // room left in the stack's block
+  EXPECT_GT(q.growthBytes(1000.0, 3), 0u);  // the key array must grow
+  EXPECT_GT(q.growthBytes(10.0, 500), 0u);  // the key's stack array must grow
   // tryPush pushes exactly when nothing must be allocated.
   EXPECT_FALSE(q.tryPush(1000.0, 3, 2));
   EXPECT_FALSE(q.tryPush(10.0, 500, 2));

@@ -101,7 +101,8 @@ TEST(DtsSchedule, MhaReachesTheGoalSoonerWhenOneQueueIsInformative) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<HeuristicValue> noise(0, 2000);
     for (std::size_t s = 0; s < g.size(); ++s) {
-      g.h[s][1] = dist[s] >= kInfiniteCost ? kInfiniteHeuristic : static_cast<HeuristicValue>(dist[s]);
+      g.h[s][1] =
+          dist[s] >= kInfiniteCost ? kInfiniteHeuristic : static_cast<HeuristicValue>(dist[s]);
       for (std::size_t i = 2; i <= 8; ++i) g.h[s][i] = noise(rng);
     }
     for (QueueSchedule schedule : {QueueSchedule::kRoundRobin, QueueSchedule::kDts}) {

@@ -19,14 +19,17 @@ void setBases(ExplicitGraph& g, int num, int den) {
   for (std::size_t s = 0; s < g.size(); ++s) {
     for (std::size_t i = 0; i < g.n_heuristics; ++i) {
       const HeuristicValue h = g.h[s][i];
-      g.b[s][i] = h == kInfiniteHeuristic ? 0 : static_cast<HeuristicValue>(std::uint64_t{h} * num / den);
+      g.b[s][i] =
+          h == kInfiniteHeuristic ? 0 : static_cast<HeuristicValue>(std::uint64_t{h} * num / den);
     }
   }
 }
 
-std::vector<ExplicitGraph> graphs() { return testing::gridsAndGraphs(24, 18, 300, 1.0, 0.7, false); }
+std::vector<ExplicitGraph> graphs() {
+  return testing::gridsAndGraphs(24, 18, 300, 1.0, 0.7, false);
+}
 
-const Algorithm kAll[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
+const Algorithm kAll[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar,       Algorithm::kAraStar,
                           Algorithm::kAnaStar,  Algorithm::kWeightedAStar, Algorithm::kAStar};
 
 TEST(InflationBases, EveryAlgorithmKeepsItsBounds) {
@@ -49,7 +52,8 @@ TEST(InflationBases, EveryAlgorithmKeepsItsBounds) {
         ASSERT_FALSE(r.solutions.empty());
         for (const Solution& s : r.solutions) {
           EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
-          EXPECT_LE(static_cast<double>(s.cost), s.nominal_bound * static_cast<double>(optimal) + 1e-9);
+          EXPECT_LE(static_cast<double>(s.cost),
+                    s.nominal_bound * static_cast<double>(optimal) + 1e-9);
         }
         if (a != Algorithm::kWeightedAStar && a != Algorithm::kMhaStar) {
           EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
@@ -66,7 +70,8 @@ std::string trace(ExplicitGraph& g, const PlannerConfig& c) {
   const SearchResult r = makePlanner(c)->search(g, SearchLimits());
   std::string t = std::to_string(static_cast<int>(r.status));
   for (const Solution& s : r.solutions) {
-    t += " " + std::to_string(s.cost) + "@" + std::to_string(s.expansions) + "/" + std::to_string(s.certified_bound);
+    t += " " + std::to_string(s.cost) + "@" + std::to_string(s.expansions) + "/" +
+         std::to_string(s.certified_bound);
   }
   return t;
 }

@@ -12,17 +12,17 @@
 namespace amha {
 namespace {
 
-const Algorithm kAll[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
-                          Algorithm::kAnaStar, Algorithm::kWeightedAStar, Algorithm::kAStar};
+const Algorithm kAll[] = {Algorithm::kAmhaStar, Algorithm::kMhaStar,       Algorithm::kAraStar,
+                          Algorithm::kAnaStar,  Algorithm::kWeightedAStar, Algorithm::kAStar};
 
 TEST(Limits, UnreachableGoalEndsWithNoSolution) {
   testing::GenOptions o;
   testing::ExplicitGraph g = testing::randomGrid(20, 20, 0.0, o);
   // Wall off the goal: remove every edge into it.
   for (auto& edges : g.adj) {
-    edges.erase(std::remove_if(edges.begin(), edges.end(),
-                               [&](const Edge& e) { return e.to == g.s_goal; }),
-                edges.end());
+    edges.erase(
+        std::remove_if(edges.begin(), edges.end(), [&](const Edge& e) { return e.to == g.s_goal; }),
+        edges.end());
   }
   for (auto& hs : g.h) hs[0] = 0;  // still admissible
   g.h[g.s_goal].assign(g.n_heuristics, 0);
@@ -86,7 +86,8 @@ TEST(Limits, CancelFromAnotherThread) {
 // itself, at a known expansion). At ~1 us an expansion that is well under a millisecond.
 class CancellingGrid : public testing::EndlessGrid {
  public:
-  CancellingGrid(std::atomic<bool>* flag, std::uint64_t at) : EndlessGrid(3), flag_(flag), at_(at) {}
+  CancellingGrid(std::atomic<bool>* flag, std::uint64_t at)
+      : EndlessGrid(3), flag_(flag), at_(at) {}
   void successors(StateId s, std::vector<Edge>& out) override {
     if (++calls_ == at_) *flag_ = true;
     EndlessGrid::successors(s, out);

@@ -24,7 +24,8 @@ int checkSeed(std::uint32_t seed) {
     g.adj.assign(n, {});
     const int m = static_cast<int>(rng() % (4 * n));
     for (int k = 0; k < m; ++k) {
-      g.adj[rng() % n].push_back(Edge{static_cast<StateId>(rng() % n), 1 + static_cast<Cost>(rng() % 200)});
+      g.adj[rng() % n].push_back(
+          Edge{static_cast<StateId>(rng() % n), 1 + static_cast<Cost>(rng() % 200)});
     }
     g.s_start = 0;
     g.s_goal = static_cast<StateId>(n - 1);
@@ -35,7 +36,7 @@ int checkSeed(std::uint32_t seed) {
     g.h.assign(n, std::vector<HeuristicValue>(g.n_heuristics, 0));
     for (int s = 0; s < n; ++s) {
       g.h[s][0] = d[s] >= kInfiniteCost ? kInfiniteHeuristic
-                                         : static_cast<HeuristicValue>(std::floor(scale * d[s]));
+                                        : static_cast<HeuristicValue>(std::floor(scale * d[s]));
       for (std::size_t i = 1; i < g.n_heuristics; ++i) {
         const unsigned b = rng() % 256;
         g.h[s][i] = b == 255 ? kInfiniteHeuristic : b * 7;

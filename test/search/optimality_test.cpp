@@ -63,10 +63,9 @@ void checkRun(ExplicitGraph& g, const PlannerConfig& config, const std::string& 
     EXPECT_EQ(r.best().cost, optimal);
     EXPECT_EQ(r.best().certified_bound, 1.0);
   }
-  const bool anytime_to_one = config.algorithm == Algorithm::kAmhaStar ||
-                              config.algorithm == Algorithm::kAraStar ||
-                              config.algorithm == Algorithm::kAnaStar ||
-                              config.algorithm == Algorithm::kAStar;
+  const bool anytime_to_one =
+      config.algorithm == Algorithm::kAmhaStar || config.algorithm == Algorithm::kAraStar ||
+      config.algorithm == Algorithm::kAnaStar || config.algorithm == Algorithm::kAStar;
   if (anytime_to_one) {
     EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
   } else {
@@ -168,8 +167,8 @@ TEST(AmhaStar, AtMostTwoExpansionsPerStatePerImprovePath) {
       o.seed = seed;
       o.anchor_scale = 0.5;
       o.n_inadmissible = 1 + seed % 8;
-      ExplicitGraph g = (seed % 2) ? testing::randomGrid(30, 25, 0.2, o)
-                                   : testing::randomGraph(500, 3, o);
+      ExplicitGraph g =
+          (seed % 2) ? testing::randomGrid(30, 25, 0.2, o) : testing::randomGraph(500, 3, o);
       const PlannerConfig config = defaultConfig(algorithm);
       detail::MhaEngineOptions eo;
       eo.w1 = config.w1;
@@ -263,8 +262,10 @@ TEST(Search, RejectsBadWeights) {
 // Weights and decrements live in [1, kMaxWeight] and [0, kMaxWeight] (issue 22, item 1: w1 =
 // 1e15 gave a false "no path"); the refusal names the parameter and the range.
 TEST(Search, RejectsWeightsAndDecrementsOutsideTheirRange) {
-  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
-  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kWeightedAStar}) {
+  const double inf = std::numeric_limits<double>::infinity(),
+               nan = std::numeric_limits<double>::quiet_NaN();
+  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
+                      Algorithm::kWeightedAStar}) {
     for (double w : {kMaxWeight * 1.000001, 1e15, 1e308, inf, nan, 0.999}) {
       PlannerConfig c = defaultConfig(a);
       c.w1 = w;
@@ -272,7 +273,9 @@ TEST(Search, RejectsWeightsAndDecrementsOutsideTheirRange) {
         makePlanner(c);
         ADD_FAILURE() << algorithmName(a) << " accepted w1 = " << w;
       } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("must be a finite number in [1, 1e+06]"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("must be a finite number in [1, 1e+06]"),
+                  std::string::npos)
+            << e.what();
       }
       if (a == Algorithm::kAmhaStar || a == Algorithm::kMhaStar) {
         c = defaultConfig(a);

@@ -7,8 +7,8 @@
 
 #include <cstdint>
 #include <thread>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "../../src/search/realloc_vector.h"
 #include "amha_planner/search/detail/memory_reuse.h"

@@ -54,18 +54,26 @@ void attachHeuristics(ExplicitGraph& g, const GenOptions& opt, std::mt19937& rng
     const bool reach = d[s] < kInfiniteCost;
     const double ds = reach ? static_cast<double>(d[s]) : 0.0;
     // floor(scale * d) is consistent for scale <= 1; unreachable states may get infinity.
-    g.h[s][0] = reach ? static_cast<HeuristicValue>(std::floor(opt.anchor_scale * ds))
-                      : kInfiniteHeuristic;
+    g.h[s][0] =
+        reach ? static_cast<HeuristicValue>(std::floor(opt.anchor_scale * ds)) : kInfiniteHeuristic;
     for (std::size_t i = 1; i < g.n_heuristics; ++i) {
       HeuristicValue v = 0;
       switch (static_cast<BadHeuristic>((i - 1) % 5)) {
-        case BadHeuristic::kOverestimate: v = clampH(10.0 * ds); break;
-        case BadHeuristic::kNoise: v = clampH(ds * 4.0 * u01(rng)); break;
-        case BadHeuristic::kRandom: v = clampH(u01(rng) * 3.0 * static_cast<double>(dmax)); break;
+        case BadHeuristic::kOverestimate:
+          v = clampH(10.0 * ds);
+          break;
+        case BadHeuristic::kNoise:
+          v = clampH(ds * 4.0 * u01(rng));
+          break;
+        case BadHeuristic::kRandom:
+          v = clampH(u01(rng) * 3.0 * static_cast<double>(dmax));
+          break;
         case BadHeuristic::kSomeInfinite:
           v = (u01(rng) < 0.25 || !reach) ? kInfiniteHeuristic : clampH(ds);
           break;
-        case BadHeuristic::kMisleading: v = clampH(static_cast<double>(dmax) - ds); break;
+        case BadHeuristic::kMisleading:
+          v = clampH(static_cast<double>(dmax) - ds);
+          break;
       }
       g.h[s][i] = v;
     }
@@ -112,8 +120,8 @@ ExplicitGraph randomGrid(int width, int height, double obstacle_prob, const GenO
   return g;
 }
 
-std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double odd_scale, double even_scale,
-                                          bool buckets) {
+std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double odd_scale,
+                                          double even_scale, bool buckets) {
   std::vector<ExplicitGraph> out;
   for (std::uint32_t seed = 1; seed <= 10; ++seed) {
     GenOptions o;
@@ -167,11 +175,11 @@ std::string validateSolution(ExplicitGraph& g, const Solution& s, Cost optimal) 
     return err.str();
   }
   if (!(s.certified_bound >= 1.0) || s.certified_bound > s.nominal_bound) {
-    err << "bounds out of order: certified " << s.certified_bound << " nominal "
-        << s.nominal_bound;
+    err << "bounds out of order: certified " << s.certified_bound << " nominal " << s.nominal_bound;
     return err.str();
   }
-  if (static_cast<double>(s.cost) > s.certified_bound * static_cast<double>(optimal) * (1 + 1e-12)) {
+  if (static_cast<double>(s.cost) >
+      s.certified_bound * static_cast<double>(optimal) * (1 + 1e-12)) {
     err << "cost " << s.cost << " > certified " << s.certified_bound << " * optimal " << optimal;
     return err.str();
   }
@@ -179,13 +187,13 @@ std::string validateSolution(ExplicitGraph& g, const Solution& s, Cost optimal) 
 }
 
 EndlessGrid::EndlessGrid(std::size_t n_heuristics) : n_heuristics_(n_heuristics) {
-  idOf(0, 0);             // start
+  idOf(0, 0);              // start
   idOf(1000000, 1000000);  // goal: surrounded by nothing that leads to it
 }
 
 StateId EndlessGrid::idOf(std::int64_t x, std::int64_t y) {
   const std::int64_t key = static_cast<std::int64_t>((static_cast<std::uint64_t>(x) << 32) ^
-                                                    (static_cast<std::uint64_t>(y) & 0xffffffffu));
+                                                     (static_cast<std::uint64_t>(y) & 0xffffffffu));
   auto it = ids_.find(key);
   if (it != ids_.end()) return it->second;
   const StateId id = static_cast<StateId>(cells_.size());

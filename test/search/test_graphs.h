@@ -47,11 +47,11 @@ std::vector<Cost> distancesToGoal(const ExplicitGraph& g);
 
 /// Kinds of inadmissible heuristics the generators attach.
 enum class BadHeuristic {
-  kOverestimate,   // 10x the true distance
-  kNoise,          // true distance times a random factor in [0, 4]
-  kRandom,         // unrelated random values
-  kSomeInfinite,   // true distance, but infinite on a random quarter of the states
-  kMisleading,     // large near the goal, small far from it
+  kOverestimate,  // 10x the true distance
+  kNoise,         // true distance times a random factor in [0, 4]
+  kRandom,        // unrelated random values
+  kSomeInfinite,  // true distance, but infinite on a random quarter of the states
+  kMisleading,    // large near the goal, small far from it
 };
 
 struct GenOptions {
@@ -70,8 +70,8 @@ ExplicitGraph randomGraph(int n, int degree, const GenOptions& opt);
 /// For seeds 1..10: a width x height randomGrid and a randomGraph of n states, each with 3
 /// inadmissible heuristics and the anchor scaled by odd_scale (odd seeds) or even_scale; the
 /// grids of every third seed allow bucket queues when `buckets`.
-std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double odd_scale, double even_scale,
-                                          bool buckets);
+std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double odd_scale,
+                                          double even_scale, bool buckets);
 
 /// Checks a solution: path from start to goal along edges, cost equals the sum of the cheapest
 /// edges used, bounds ordered 1 <= certified <= nominal, cost <= certified * optimal.

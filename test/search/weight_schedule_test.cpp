@@ -36,7 +36,8 @@ void checkStream(ExplicitGraph& g, const PlannerConfig& c, const std::string& la
     EXPECT_LE(s.cost, r.solutions[k - 1].cost);
     // The last iteration (w1 = w2 = 1) always runs, and may find nothing left to expand.
     if (s.nominal_bound > 1.0) {
-      EXPECT_GT(s.expansions, r.solutions[k - 1].expansions) << "solution " << k << " repeats the last one";
+      EXPECT_GT(s.expansions, r.solutions[k - 1].expansions)
+          << "solution " << k << " repeats the last one";
     }
     EXPECT_LT(s.nominal_bound, r.solutions[k - 1].nominal_bound);
   }
@@ -59,7 +60,8 @@ TEST(WeightSchedule, CertifiedSolutionsBoundedImprovingAndOptimalAtTheEnd) {
       }
     }
   }
-  EXPECT_GT(more_than_two, 10) << "the certified schedule should publish solutions between the first and the last";
+  EXPECT_GT(more_than_two, 10)
+      << "the certified schedule should publish solutions between the first and the last";
 }
 
 // Publishing within iterations: every solution still valid and within its bounds, costs
@@ -83,17 +85,20 @@ TEST(WeightSchedule, PublishingWithinIterationsFillsTheMiddleHonestly) {
       EXPECT_EQ(r.best().cost, optimal);
       for (std::size_t k = 0; k < r.solutions.size(); ++k) {
         const Solution& s = r.solutions[k];
-        EXPECT_EQ(testing::validateSolution(g, s, optimal), "") << algorithmName(a) << " solution " << k;
+        EXPECT_EQ(testing::validateSolution(g, s, optimal), "")
+            << algorithmName(a) << " solution " << k;
         if (k == 0) continue;
         EXPECT_LE(s.cost, r.solutions[k - 1].cost);
-        EXPECT_TRUE(s.cost < r.solutions[k - 1].cost || s.certified_bound < r.solutions[k - 1].certified_bound)
+        EXPECT_TRUE(s.cost < r.solutions[k - 1].cost ||
+                    s.certified_bound < r.solutions[k - 1].certified_bound)
             << algorithmName(a) << " solution " << k << " tells nothing new";
       }
       ++runs;
       middles += r.solutions.size() > 2;
     }
   }
-  EXPECT_GT(middles, runs / 4) << "publishing within iterations should fill the middle of many runs";
+  EXPECT_GT(middles, runs / 4)
+      << "publishing within iterations should fill the middle of many runs";
 }
 
 // A first iteration that stalls gives way to a larger w1: the path it finds carries that
@@ -142,7 +147,8 @@ TEST(WeightSchedule, HugeWeightsStillFindTheGoal) {
   for (ExplicitGraph& g : graphs()) {
     const Cost optimal = testing::distancesToGoal(g)[g.s_start];
     if (optimal >= kInfiniteCost) continue;
-    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kWeightedAStar}) {
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
+                              Algorithm::kWeightedAStar}) {
       PlannerConfig c = defaultConfig(a);
       c.w1 = kMaxWeight;
       if (a == Algorithm::kAmhaStar || a == Algorithm::kMhaStar) c.w2 = kMaxWeight;

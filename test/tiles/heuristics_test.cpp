@@ -72,7 +72,8 @@ TEST(Heuristics, LineConflictMatchesBruteForce) {
   for (int n = kMinSize; n <= kMaxSize; ++n) {
     for (int i = 0; i < 200; ++i) {
       // Random boards have few tiles in their goal lines; walks from the goal have many.
-      const Board b = (i % 2 == 0) ? randomSolvableBoard(n, 5, i) : randomWalkBoard(n, 10 + i, 5, i);
+      const Board b =
+          (i % 2 == 0) ? randomSolvableBoard(n, 5, i) : randomWalkBoard(n, 10 + i, 5, i);
       int total = 0;
       for (int line = 0; line < n; ++line) {
         for (bool row : {true, false}) {
@@ -119,14 +120,16 @@ TEST(Heuristics, AnchorAdmissibleOnAll3x3Boards) {
 TEST(Heuristics, AnchorConsistentOnRandomEdges) {
   for (int n = kMinSize; n <= kMaxSize; ++n) {
     for (int i = 0; i < 300; ++i) {
-      const Board b = (i % 3 == 0) ? randomSolvableBoard(n, 11, i) : randomWalkBoard(n, 3 * i, 11, i);
+      const Board b =
+          (i % 3 == 0) ? randomSolvableBoard(n, 11, i) : randomWalkBoard(n, 3 * i, 11, i);
       const HeuristicTerms tb = heuristicTerms(b);
       const int p = blankPosition(b);
       for (int q : blankNeighbours(b)) {
         Board c = b;
         std::swap(c.tiles[p], c.tiles[q]);
         const HeuristicTerms tc = heuristicTerms(c);
-        ASSERT_LE(std::abs(static_cast<int>(anchorValue(tb)) - static_cast<int>(anchorValue(tc))), 1)
+        ASSERT_LE(std::abs(static_cast<int>(anchorValue(tb)) - static_cast<int>(anchorValue(tc))),
+                  1)
             << toString(b) << " -> " << toString(c);
         ASSERT_EQ(std::abs(tb.md - tc.md), 1);
         ASSERT_LE(std::abs(tb.mt - tc.mt), 1);

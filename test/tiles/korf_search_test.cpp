@@ -36,8 +36,9 @@ TEST(Korf100, AnchorNeverExceedsTheOptimalLength) {
 
 // The 43 instances A* (anchor MD + LC, this engine's tie-breaking: smaller h, then newest)
 // solves in under 500,000 expansions (measured with the bucket queues: 11,782 for instance 12
-// .. 438,983 for instance 69; 5.9 M in total; the heap's order gave the same 43). The other 57 need up to billions of expansions; `amha tiles --instances
-// korf100_15puzzle.txt --algorithms astar` runs them as a benchmark instead.
+// .. 438,983 for instance 69; 5.9 M in total; the heap's order gave the same 43). The other 57 need
+// up to billions of expansions; `amha tiles --instances korf100_15puzzle.txt --algorithms astar`
+// runs them as a benchmark instead.
 const int kCheapForAStar[] = {6,  9,  12, 13, 16, 18, 19, 23, 28, 30, 31, 34, 36, 38, 39,
                               42, 44, 45, 46, 47, 48, 50, 55, 57, 58, 61, 65, 69, 71, 73,
                               74, 78, 79, 81, 83, 85, 86, 90, 93, 94, 95, 96, 97};
@@ -108,8 +109,8 @@ TEST(Korf100, AnytimeSolutionsReplayWithinTheirCertifiedBounds) {
   const auto inst = korf();
   if (inst.empty()) GTEST_SKIP() << "shared data absent";
   std::size_t solutions = 0;
-  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar,
-                      Algorithm::kAnaStar}) {
+  for (Algorithm a :
+       {Algorithm::kAmhaStar, Algorithm::kMhaStar, Algorithm::kAraStar, Algorithm::kAnaStar}) {
     solutions += replayAll(inst, defaultConfig(a), algorithmName(a));
   }
   EXPECT_GT(solutions, 400u);

@@ -24,9 +24,11 @@ std::string errorOf(const std::string& text) {
 // distance was done on the long).
 TEST(InstancesRegression, OptimalLengthsBeyondIntAreRefused) {
   const std::string tiles = " 42 4 7 14 13 10 3 9 12 11 5 6 15 1 2 8 0\n";
-  EXPECT_NE(errorOf("5 522222222226" + tiles).find("r.txt:1: optimal length '522222222226' is not an integer in -1..1000000"),
+  EXPECT_NE(errorOf("5 522222222226" + tiles)
+                .find("r.txt:1: optimal length '522222222226' is not an integer in -1..1000000"),
             std::string::npos);
-  EXPECT_NE(errorOf("5 2147483648" + tiles).find("is not an integer in -1..1000000"), std::string::npos);
+  EXPECT_NE(errorOf("5 2147483648" + tiles).find("is not an integer in -1..1000000"),
+            std::string::npos);
   EXPECT_NE(errorOf("5 -2" + tiles).find("is not an integer in -1..1000000"), std::string::npos);
   const std::vector<Instance> ok = parseInstances("5 60" + tiles, "r.txt");
   ASSERT_EQ(ok.size(), 1u);

@@ -13,8 +13,8 @@
 namespace amha {
 namespace lattice {
 
-/// Largest LatticeConfig::Heuristics::coarse_block: the abstraction's edges cost coarse_block^2 work per
-/// action to build (about a second at 1024 with 16 headings).
+/// Largest LatticeConfig::Heuristics::coarse_block: the abstraction's edges cost coarse_block^2
+/// work per action to build (about a second at 1024 with 16 headings).
 constexpr int kMaxCoarseBlock = 1024;
 /// Smallest turning radius (in cells of the map) the primitive generator is given: far below it an
 /// arc degenerates (its curvature overflows), and every radius under a cell gives the same

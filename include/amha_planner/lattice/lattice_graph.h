@@ -20,11 +20,11 @@ namespace lattice {
 
 /// A primitive ready for the search.
 struct LatticeAction {
-  int dx = 0, dy = 0;      ///< end cell relative to the start cell
+  int dx = 0, dy = 0;  ///< end cell relative to the start cell
   int start_heading = 0;
   int end_heading = 0;
-  int primitive = 0;       ///< index into PrimitiveSet::primitives
-  Cost base_cost = 1;      ///< cost on free cells (see LatticeConfig::CostModel::penalty)
+  int primitive = 0;            ///< index into PrimitiveSet::primitives
+  Cost base_cost = 1;           ///< cost on free cells (see LatticeConfig::CostModel::penalty)
   std::int64_t end_offset = 0;  ///< dy * width + dx
   int min_dx = 0, max_dx = 0, min_dy = 0, max_dy = 0;  ///< box of every cell it touches
   /// Largest distance (cells) from the start cell to a swept cell: if the start cell is
@@ -38,7 +38,6 @@ struct LatticeAction {
 };
 
 constexpr Cost kInvalidEdge = -1;
-
 
 /// What may stop a graph's construction (LatticePlanner's constructor with limits).
 struct GraphLimits {
@@ -80,11 +79,17 @@ class LatticeGraph {
   int height() const { return map_->height; }
   int numHeadings() const { return primitives_.num_headings; }
 
-  const LatticeAction* actionsBegin(int heading) const { return actions_.data() + action_index_[heading]; }
-  const LatticeAction* actionsEnd(int heading) const { return actions_.data() + action_index_[heading + 1]; }
+  const LatticeAction* actionsBegin(int heading) const {
+    return actions_.data() + action_index_[heading];
+  }
+  const LatticeAction* actionsEnd(int heading) const {
+    return actions_.data() + action_index_[heading + 1];
+  }
   const std::vector<LatticeAction>& actions() const { return actions_; }
   /// Actions ending in `heading` (for backward search).
-  const std::vector<const LatticeAction*>& actionsInto(int heading) const { return actions_into_[heading]; }
+  const std::vector<const LatticeAction*>& actionsInto(int heading) const {
+    return actions_into_[heading];
+  }
   const std::vector<std::int64_t>& offsets() const { return offsets_; }
   /// Cell offsets (not linearised) of an action's centre and swept cells, for tools and tests.
   const PrimitiveCells& actionCells(std::size_t action) const { return action_cells_[action]; }
@@ -92,7 +97,8 @@ class LatticeGraph {
   /// Cost of taking `a` from cell (x, y), or kInvalidEdge if it leaves the map, its centre
   /// crosses an inscribed/lethal/unknown cell, or its footprint sweeps a lethal/unknown cell.
   Cost edgeCost(int x, int y, const LatticeAction& a) const {
-    if (x + a.min_dx < 0 || x + a.max_dx >= map_->width || y + a.min_dy < 0 || y + a.max_dy >= map_->height) {
+    if (x + a.min_dx < 0 || x + a.max_dx >= map_->width || y + a.min_dy < 0 ||
+        y + a.max_dy >= map_->height) {
       return kInvalidEdge;
     }
     const std::int64_t base = static_cast<std::int64_t>(y) * map_->width + x;
@@ -137,8 +143,8 @@ class LatticeGraph {
   double gridTurnUnitsPerRadian() const { return grid_turn_per_rad_; }
 
   /// The obstacle-free kinematic tables of this graph's actions (null when
-  /// LatticeConfig::Heuristics::kinematic_radius is 0 or the anchor is the Euclidean one): shared with every
-  /// graph that has the same actions, whatever its map.
+  /// LatticeConfig::Heuristics::kinematic_radius is 0 or the anchor is the Euclidean one): shared
+  /// with every graph that has the same actions, whatever its map.
   const std::shared_ptr<KinematicTables>& kinematicTables() const { return kinematic_; }
 
   /// Per cell, its clearance class: how many of the distinct sweep radii (ascending) the

@@ -128,7 +128,9 @@ struct PlanResult {
     return out;
   }
   /// Seconds of the whole call: the escape, the goal choice, the heuristics and the search.
-  double totalSeconds() const { return escape_seconds + goal_seconds + heuristic_seconds + search.elapsed_s; }
+  double totalSeconds() const {
+    return escape_seconds + goal_seconds + heuristic_seconds + search.elapsed_s;
+  }
 
   /// How the last solution left the start's collision (empty without an escape).
   std::string escape_message;
@@ -152,7 +154,8 @@ class LatticePlanner {
   /// budget (counted from this call) stop the per-map work, and a per-map memory estimate
   /// above max_memory_bytes refuses it before it starts; each throws SetupStopped.
   /// max_expansions and max_states do not apply.
-  LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config, const SearchLimits& limits);
+  LatticePlanner(std::shared_ptr<const GridMap> map, const LatticeConfig& config,
+                 const SearchLimits& limits);
   /// The planner of `map`, a version of previous.map() whose cells differ only inside
   /// `changed` (same size, resolution and origin; checked, else LatticeError): the same result
   /// as the constructor above with previous.config(), built from `previous` by recomputing only
@@ -192,7 +195,8 @@ class LatticePlanner {
   bool prepareKinematicTables(const SearchLimits& limits = SearchLimits()) const;
   /// The same for one query only: the table its goal (searching backward, its start) needs,
   /// e.g. for a process that plans once (amha plan).
-  bool prepareKinematicTables(const Pose2D& start, const Pose2D& goal, const GoalOptions& goal_options,
+  bool prepareKinematicTables(const Pose2D& start, const Pose2D& goal,
+                              const GoalOptions& goal_options,
                               const SearchLimits& limits = SearchLimits()) const;
   /// Bytes of the kinematic tables built so far (shared; 0 without tables).
   std::size_t kinematicTableBytes() const;
@@ -200,7 +204,8 @@ class LatticePlanner {
   /// tolerance must be finite and >= 0 and the penalty finite and >= 1, else
   /// std::invalid_argument.
   PlanResult plan(const Pose2D& start, const Pose2D& goal, const StartOptions& start_options,
-                  const GoalOptions& goal_options, const PlannerConfig& algorithm, const SearchLimits& limits,
+                  const GoalOptions& goal_options, const PlannerConfig& algorithm,
+                  const SearchLimits& limits,
                   const std::function<void(const LatticeSolution&)>& on_solution = {});
 
   /// The footprint polygon placed at a pose (map frame), for drawing and markers.

@@ -66,9 +66,9 @@ GridMap loadMovingAiMap(const std::string& path, double resolution, int upscale 
 // SBPL (x, y, theta) environment files (.cfg).
 
 struct SbplEnvironment {
-  GridMap map;                   ///< costs remapped to the costmap scale (see loadSbplEnvironment)
-  int num_theta_dirs = 16;       ///< NumThetaDirs (16 if absent)
-  int obsthresh = 254;           ///< the file's thresholds, as written
+  GridMap map;              ///< costs remapped to the costmap scale (see loadSbplEnvironment)
+  int num_theta_dirs = 16;  ///< NumThetaDirs (16 if absent)
+  int obsthresh = 254;      ///< the file's thresholds, as written
   int cost_inscribed_thresh = 253;
   int cost_possibly_circumscribed_thresh = -1;
   double nominal_speed = 1.0;    ///< nominalvel(mpersecs)

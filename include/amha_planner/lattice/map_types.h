@@ -74,7 +74,8 @@ class LatticeError : public std::runtime_error {
 /// cap; status() says which (kCancelled, kTimeLimit, kMemoryLimit) and what() why.
 class SetupStopped : public std::runtime_error {
  public:
-  SetupStopped(SearchStatus status, const std::string& what) : std::runtime_error(what), status_(status) {}
+  SetupStopped(SearchStatus status, const std::string& what)
+      : std::runtime_error(what), status_(status) {}
   SearchStatus status() const { return status_; }
 
  private:

@@ -14,10 +14,10 @@ namespace amha {
 namespace lattice {
 
 struct MotionPrimitive {
-  int id = 0;                ///< primID (index within its start heading)
-  int start_heading = 0;     ///< 0 .. num_headings - 1
-  int end_dx = 0, end_dy = 0;  ///< end cell relative to the start cell
-  int end_heading = 0;       ///< 0 .. num_headings - 1
+  int id = 0;                    ///< primID (index within its start heading)
+  int start_heading = 0;         ///< 0 .. num_headings - 1
+  int end_dx = 0, end_dy = 0;    ///< end cell relative to the start cell
+  int end_heading = 0;           ///< 0 .. num_headings - 1
   double cost_multiplier = 1.0;  ///< additionalactioncostmult (> 0)
   double turning_radius = 0.0;   ///< non-uniform files only (0: straight or turn in place;
                                  ///< SBPL's files sign it: negative turns right)
@@ -31,7 +31,7 @@ struct MotionPrimitive {
 
 /// A complete set of primitives for one resolution and heading discretisation.
 struct PrimitiveSet {
-  double resolution = 0.0;      ///< metres per cell
+  double resolution = 0.0;  ///< metres per cell
   int num_headings = 0;
   /// Angle of each heading in [0, 2 pi). Uniform sets: 2 pi i / N. Non-uniform sets (SBPL's
   /// "min_turning_radius_m" format, and our generator) list them explicitly.
@@ -73,15 +73,15 @@ void writeMprimFile(const std::string& path, const PrimitiveSet& set);
 void writeMprim(std::ostream& out, const PrimitiveSet& set);
 
 struct PrimitiveGeneratorOptions {
-  double resolution = 0.05;       ///< metres per cell
-  int num_headings = 16;          ///< a multiple of 8
-  double turning_radius = 0.5;    ///< minimum turning radius of the arcs (m, > 0)
-  bool allow_reverse = false;     ///< add backward motions
-  bool turn_in_place = true;      ///< add turns on the spot to the neighbouring headings
+  double resolution = 0.05;           ///< metres per cell
+  int num_headings = 16;              ///< a multiple of 8
+  double turning_radius = 0.5;        ///< minimum turning radius of the arcs (m, > 0)
+  bool allow_reverse = false;         ///< add backward motions
+  bool turn_in_place = true;          ///< add turns on the spot to the neighbouring headings
   double long_straight_length = 0.0;  ///< legacy: length of the long straight move (m); 0: 8 cells
   double reverse_multiplier = 3.0;    ///< cost multiplier of backward motions
   double turn_in_place_multiplier = 1.0;
-  double arc_multiplier = 1.0;        ///< legacy only
+  double arc_multiplier = 1.0;  ///< legacy only
   // ---- Added with the near-minimal generator. ----
   PrimitiveGenerator generator = PrimitiveGenerator::kNearMinimal;
   /// kAckermann has no turns on the spot whatever turn_in_place says; kOmni adds sideways moves.
@@ -141,7 +141,8 @@ void addBackwardTwins(PrimitiveSet& set, double multiplier);
 /// "file: primitives[k] (trajectory_id i): field: problem" (or "file:line:column" for JSON
 /// syntax errors).
 PrimitiveSet readNav2LatticeFile(const std::string& path, double map_resolution = 0.0);
-PrimitiveSet readNav2Lattice(std::istream& in, const std::string& name, double map_resolution = 0.0);
+PrimitiveSet readNav2Lattice(std::istream& in, const std::string& name,
+                             double map_resolution = 0.0);
 
 /// Writes `set` as a Nav2 lattice file that Nav2's reader and readNav2Lattice read. Backward
 /// motions are left out (Nav2 adds them itself with allow_reverse_expansion; so does

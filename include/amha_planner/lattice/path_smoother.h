@@ -28,22 +28,22 @@ struct SmoothedPiece {
   /// True: part of a curve that replaced lattice motions (a Dubins path between the lattice
   /// path's poses at two of its states). False: a lattice motion kept as it was.
   bool shortcut = false;
-  bool backward = false;     ///< driven in reverse (the heading points against the motion)
-  int primitive = -1;        ///< kept motions: the primitive (index into PrimitiveSet::primitives)
-  double multiplier = 1.0;   ///< shortcut pieces: the largest multiplier of the motions replaced
-  Cost cost = 0;             ///< its cost by the edge cost formula (see PathSmoother)
+  bool backward = false;    ///< driven in reverse (the heading points against the motion)
+  int primitive = -1;       ///< kept motions: the primitive (index into PrimitiveSet::primitives)
+  double multiplier = 1.0;  ///< shortcut pieces: the largest multiplier of the motions replaced
+  Cost cost = 0;            ///< its cost by the edge cost formula (see PathSmoother)
 };
 
 struct SmoothedPath {
-  std::vector<Pose2D> poses;         ///< map frame; front() and back() are the input's own
+  std::vector<Pose2D> poses;          ///< map frame; front() and back() are the input's own
   std::vector<SmoothedPiece> pieces;  ///< consecutive: each starts where the previous ends
-  Cost cost = 0;                     ///< the sum of the pieces' costs, <= lattice_cost
+  Cost cost = 0;                      ///< the sum of the pieces' costs, <= lattice_cost
   /// The input's cost as its cheapest motions of this lattice: at most the search's (the same
   /// poses may be one long straight move or several short ones, whose worst cells differ).
   Cost lattice_cost = 0;
-  double turning_radius = 0.0;       ///< of the shortcuts (metres)
-  std::size_t shortcuts = 0;         ///< how many curves replaced lattice motions
-  double seconds = 0.0;              ///< time smooth() took
+  double turning_radius = 0.0;  ///< of the shortcuts (metres)
+  std::size_t shortcuts = 0;    ///< how many curves replaced lattice motions
+  double seconds = 0.0;         ///< time smooth() took
 };
 
 /// How a primitive moves: forward or backward when every step between its intermediate poses
@@ -55,8 +55,8 @@ MotionKind motionKind(const MotionPrimitive& primitive);
 /// The motion model's minimum turning radius (metres): the tightest turn of its driving
 /// primitives, measured between consecutive intermediate poses as 1 / (2 sin(|dtheta| / 2) /
 /// |dp|), the radius of the circle through both (exact for samples of an arc). Generated
-/// primitives turn no tighter than LatticeConfig::Motion::turning_radius and usually wider (their arcs
-/// must end on cell centres); an .mprim file's min_turning_radius_m is its authors' claim.
+/// primitives turn no tighter than LatticeConfig::Motion::turning_radius and usually wider (their
+/// arcs must end on cell centres); an .mprim file's min_turning_radius_m is its authors' claim.
 /// Infinite if no driving primitive turns (then nothing is shortcut).
 double modelTurningRadius(const LatticeGraph& graph);
 
@@ -109,12 +109,13 @@ class PathSmoother {
   /// corner).
   std::vector<Edge> parse(const std::vector<Pose2D>& poses, std::vector<Pose2D>& grid) const;
   struct Scratch;  // buffers of one smooth() call
-  bool tryShortcut(const Pose2D& from, const Pose2D& to, int x0, int y0, bool backward, double radius,
-                   double multiplier, Cost budget, Candidate& out, Scratch& scratch) const;
-  Cost shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses, double multiplier, Cost budget,
-                    std::vector<SmoothedPiece>* pieces, Scratch& scratch) const;
-  bool sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, std::size_t first, std::size_t last,
-                 Scratch& scratch) const;
+  bool tryShortcut(const Pose2D& from, const Pose2D& to, int x0, int y0, bool backward,
+                   double radius, double multiplier, Cost budget, Candidate& out,
+                   Scratch& scratch) const;
+  Cost shortcutCost(int x0, int y0, const std::vector<Pose2D>& poses, double multiplier,
+                    Cost budget, std::vector<SmoothedPiece>* pieces, Scratch& scratch) const;
+  bool sweepFree(int x0, int y0, const std::vector<Pose2D>& poses, std::size_t first,
+                 std::size_t last, Scratch& scratch) const;
   bool provablyFree(double cx, double cy, double reach) const;
 
   const LatticeGraph& graph_;
@@ -142,9 +143,9 @@ class SmoothedStream {
   explicit SmoothedStream(const PathSmoother& smoother) : smoother_(smoother) {}
 
   struct Step {
-    LatticeSolution published;  ///< poses, cost and bounds to publish
-    SmoothedPath smoothed;      ///< this solution's own smoothed path
-    bool republished = false;   ///< published is an earlier solution's smoothed path
+    LatticeSolution published;      ///< poses, cost and bounds to publish
+    SmoothedPath smoothed;          ///< this solution's own smoothed path
+    bool republished = false;       ///< published is an earlier solution's smoothed path
     bool same_as_previous = false;  ///< published.poses are the previous step's
   };
   /// Throws what PathSmoother::smooth throws. A path that leaves a start in collision

@@ -54,8 +54,8 @@ amha::lattice::Pose2D pose2DFromPose(const geometry_msgs::Pose& pose);
 geometry_msgs::Quaternion quaternionFromYaw(double yaw);
 
 /// A map-frame pose as a stamped message (frame, stamp).
-geometry_msgs::PoseStamped poseStampedFromPose2D(const amha::lattice::Pose2D& pose, const std::string& frame,
-                                                 const ros::Time& stamp);
+geometry_msgs::PoseStamped poseStampedFromPose2D(const amha::lattice::Pose2D& pose,
+                                                 const std::string& frame, const ros::Time& stamp);
 
 /// A path message (frame, stamp) through the given map-frame poses.
 nav_msgs::Path pathFromPoses(const std::vector<amha::lattice::Pose2D>& poses,
@@ -69,8 +69,9 @@ PlanSolution planSolutionMsg(const amha::lattice::LatticeSolution& solution,
 /// The message for one smoothed solution: `published` (SmoothedStream::Step::published) as path,
 /// cost and bounds, `lattice` (the search's solution) as lattice_path and lattice_cost.
 PlanSolution smoothedSolutionMsg(const amha::lattice::LatticeSolution& published,
-                                 const amha::lattice::LatticeSolution& lattice, std::uint32_t request_id,
-                                 const std::string& frame, const ros::Time& stamp);
+                                 const amha::lattice::LatticeSolution& lattice,
+                                 std::uint32_t request_id, const std::string& frame,
+                                 const ros::Time& stamp);
 
 /// Search cost units -> metres-equivalent.
 inline double costInMetres(amha::Cost cost) {

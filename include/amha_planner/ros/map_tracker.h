@@ -34,8 +34,8 @@ class MapTracker {
  public:
   /// tf2's transform global frame <- `frame` at `stamp`, waiting up to `timeout` seconds for it;
   /// throws tf2::TransformException if there is none.
-  using TransformToGlobal =
-      std::function<geometry_msgs::TransformStamped(const std::string& frame, const ros::Time& stamp, double timeout)>;
+  using TransformToGlobal = std::function<geometry_msgs::TransformStamped(
+      const std::string& frame, const ros::Time& stamp, double timeout)>;
 
   /// Subscribes to "map" under `nh` and to its updates, on its own callback queue (served from
   /// start()). The global frame and the map size cap are `startup`'s; the conversion, the robot
@@ -65,7 +65,8 @@ class MapTracker {
   /// `cancel` or `shutting_down` is set first (a cancel wakes it at once if wakeWaiters() is
   /// called), kTimeUp if `deadline` passed first.
   enum class Wait { kReady, kCancelled, kTimeUp };
-  Wait waitForCurrentPlanner(const std::atomic<bool>& cancel, const std::atomic<bool>& shutting_down,
+  Wait waitForCurrentPlanner(const std::atomic<bool>& cancel,
+                             const std::atomic<bool>& shutting_down,
                              std::chrono::steady_clock::time_point deadline);
   /// Wakes the requests waiting in waitForCurrentPlanner (one of them was cancelled).
   void wakeWaiters();
@@ -82,8 +83,8 @@ class MapTracker {
   /// frame by tf2 (waiting up to `tf_timeout` seconds; its header keeps the frame it came in,
   /// which its updates name); false with `why` set if there is no transform (then the map must
   /// be refused, not used as it is).
-  bool mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, double tf_timeout, nav_msgs::OccupancyGrid* out,
-                        std::string* why);
+  bool mapInGlobalFrame(const nav_msgs::OccupancyGrid& in, double tf_timeout,
+                        nav_msgs::OccupancyGrid* out, std::string* why);
   void onMapUpdate(const map_msgs::OccupancyGridUpdate::ConstPtr& update);
   /// What one build starts from: the maps and updates received since the last build.
   struct BuildInput {
@@ -95,9 +96,9 @@ class MapTracker {
     bool full_map = false;
     std::uint32_t width = 0, height = 0;
     double resolution = 0.0;
-    std::string error;  ///< why the map was refused
+    std::string error;                            ///< why the map was refused
     std::shared_ptr<const PlannerParams> params;  ///< the parameters to build with
-    bool reconfigured = false;  ///< built in full because the parameters changed
+    bool reconfigured = false;                    ///< built in full because the parameters changed
   };
   /// On the builder thread: builds the planner of the current map (with every update received
   /// so far) and makes it current; a map the lattice refuses is logged and the planner kept.
@@ -123,15 +124,15 @@ class MapTracker {
   ros::CallbackQueue map_queue_;
   std::unique_ptr<ros::AsyncSpinner> map_spinner_;
   ros::Subscriber map_sub_, map_updates_sub_;
-  std::mutex map_mutex_;  ///< guards the eight below
+  std::mutex map_mutex_;              ///< guards the eight below
   nav_msgs::OccupancyGrid last_map_;  ///< the latest accepted map, with its accepted updates
   /// The grid of the full map accepted since the last build started (as it came, without the
   /// updates after it), converted once when it was checked; null if none.
   std::shared_ptr<const amha::lattice::GridMap> unbuilt_grid_;
-  std::uint64_t map_version_ = 0;     ///< maps and updates accepted into last_map_
-  std::uint64_t unbuilt_updates_ = 0; ///< updates accepted since the last build started
+  std::uint64_t map_version_ = 0;         ///< maps and updates accepted into last_map_
+  std::uint64_t unbuilt_updates_ = 0;     ///< updates accepted since the last build started
   amha::lattice::CellRect unbuilt_rect_;  ///< the cells they changed
-  bool build_failed_ = false;         ///< the last build failed: the next one starts afresh
+  bool build_failed_ = false;             ///< the last build failed: the next one starts afresh
   /// The robot, motion model or map conversion changed: the next build converts last_map_
   /// again and builds in full.
   bool reconfigured_ = false;
@@ -142,7 +143,7 @@ class MapTracker {
   std::uint64_t built_version_ = 0;  ///< map_version_ of the last build (refused ones too)
   /// Why the last full map was refused while there was no planner (NO_MAP says it), else "".
   std::string refused_map_reason_;
-  std::atomic<bool> stop_builds_{false};  ///< set at shutdown: a running build stops
+  std::atomic<bool> stop_builds_{false};      ///< set at shutdown: a running build stops
   std::unique_ptr<LatestJobRunner> builder_;  ///< reset (joined) before the members it uses
 };
 

@@ -21,13 +21,15 @@ class PlanAnytimeServer : public actionlib::ActionServerBase<PlanAnytimeAction> 
  public:
   using Base = actionlib::ActionServerBase<PlanAnytimeAction>;
   /// Serves the action `name` under `nh`; call start() once the callbacks may run.
-  PlanAnytimeServer(const ros::NodeHandle& nh, const std::string& name, boost::function<void(GoalHandle)> goal_cb,
+  PlanAnytimeServer(const ros::NodeHandle& nh, const std::string& name,
+                    boost::function<void(GoalHandle)> goal_cb,
                     boost::function<void(GoalHandle)> cancel_cb);
   ~PlanAnytimeServer() override;
 
   /// The result a goal gets when actionlib ends it without the planner: status CANCELLED for
   /// a recalled or preempted goal (INTERNAL_ERROR otherwise, which no path here produces).
-  static PlanAnytimeResult resultWithoutPlanner(std::uint8_t goal_state, const std::string& global_frame);
+  static PlanAnytimeResult resultWithoutPlanner(std::uint8_t goal_state,
+                                                const std::string& global_frame);
   /// The global frame named in those results' empty path.
   void setGlobalFrame(const std::string& frame) { global_frame_ = frame; }
 

@@ -22,8 +22,8 @@ constexpr double kMaxRobotRadius = 10.0;
 constexpr double kMaxTurningRadius = 100.0;
 
 struct PlannerParams {
-  amha::lattice::LatticeConfig lattice;            ///< robot and motion model
-  amha::lattice::OccupancyConversion occupancy;    ///< how the map's cells become costs
+  amha::lattice::LatticeConfig lattice;              ///< robot and motion model
+  amha::lattice::OccupancyConversion occupancy;      ///< how the map's cells become costs
   std::size_t max_map_cells = std::size_t{1} << 24;  ///< bigger maps are refused
 
   amha::Algorithm algorithm = amha::Algorithm::kAmhaStar;
@@ -34,21 +34,26 @@ struct PlannerParams {
   amha::QueueSchedule queue_schedule = amha::QueueSchedule::kRoundRobin;
   /// A-MHA*: how the weights fall between iterations and whether improvements are published
   /// within them (PlannerConfig's fields; the defaults are lattice::defaultPlannerConfig's).
-  amha::WeightSchedule weight_schedule = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).weight_schedule;
-  double certified_ratio = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_ratio;
-  double certified_split = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_split;
+  amha::WeightSchedule weight_schedule =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).weight_schedule;
+  double certified_ratio =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_ratio;
+  double certified_split =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).certified_split;
   double final_gap = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).final_gap;
-  bool publish_within_iterations = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).publish_within_iterations;
-  int stall_expansions = static_cast<int>(amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_expansions);
+  bool publish_within_iterations =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).publish_within_iterations;
+  int stall_expansions = static_cast<int>(
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_expansions);
   double stall_w1 = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_w1;
 
-  double default_time_budget = 5.0;   ///< seconds, when a request gives 0
+  double default_time_budget = 5.0;  ///< seconds, when a request gives 0
   /// Publish smoothed paths (PathSmoother): PlanSolution::path smoothed, lattice_path the raw.
   bool smooth_path = true;
   /// Every request's goal heading is free (as if each set ignore_goal_heading; also
   /// ~make_plan's, whose GetPlan cannot say it).
   bool ignore_goal_heading = false;
-  double max_memory_mb = 2048.0;      ///< search + lattice state memory cap per request
+  double max_memory_mb = 2048.0;  ///< search + lattice state memory cap per request
   /// A start in collision may be left within this many metres (a request's start_tolerance
   /// of 0 takes it; 0: refused), each escape motion at this penalty (StartOptions).
   double start_tolerance = 0.0;
@@ -56,22 +61,23 @@ struct PlannerParams {
 
   std::string global_frame = "map";
   std::string robot_base_frame = "base_link";
-  double tf_timeout = 0.5;            ///< seconds to wait for a transform
+  double tf_timeout = 0.5;  ///< seconds to wait for a transform
 
-  int max_queued_requests = 2;        ///< requests that may wait while one plans; more: BUSY
+  int max_queued_requests = 2;  ///< requests that may wait while one plans; more: BUSY
   /// Returns the memory of replaced maps and finished requests to the system: blocks of 4 MiB
   /// and more are mapped alone (process-wide, freed_memory.h), and the heap's free pages are
   /// trimmed after much has been freed. Off: glibc's defaults, which keep tens of MB of a
   /// replaced 4000 x 4000 map resident for reuse. Read at start-up only (not reconfigurable).
   bool release_freed_memory = true;
-  double marker_spacing = 0.5;        ///< metres between footprint markers along the path
+  double marker_spacing = 0.5;  ///< metres between footprint markers along the path
 };
 
 /// The parameters in force, shared by the server's threads: a reconfiguration replaces them
 /// whole, and each reader takes a snapshot.
 class ParamsInForce {
  public:
-  explicit ParamsInForce(const PlannerParams& params) : params_(std::make_shared<const PlannerParams>(params)) {}
+  explicit ParamsInForce(const PlannerParams& params)
+      : params_(std::make_shared<const PlannerParams>(params)) {}
   std::shared_ptr<const PlannerParams> get() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return params_;
@@ -99,7 +105,8 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
 
 /// A footprint in costmap_2d's string form "[[x, y], ...]" ("" or "[]": none, a round robot).
 /// Throws std::invalid_argument naming the parameter (pnh's ~footprint) and the problem.
-std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh, const std::string& text);
+std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh,
+                                                       const std::string& text);
 
 /// Strips a leading '/' (tf2 frame ids have none).
 std::string normaliseFrame(const std::string& frame);

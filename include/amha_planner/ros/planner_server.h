@@ -24,7 +24,6 @@
 #include <string>
 #include <vector>
 
-#include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
 #include <nav_msgs/GetPlan.h>
 #include <ros/callback_queue.h>
@@ -32,6 +31,7 @@
 #include <ros/spinner.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <boost/thread/recursive_mutex.hpp>
 
 #include "amha_planner/AmhaPlannerConfig.h"
 #include "amha_planner/Plan.h"
@@ -83,22 +83,25 @@ class PlannerServer {
   /// `sink`), smoothed with ~smooth_path, and adding its message to res->solutions (res holds
   /// the request's id and its path's stamp); *best_poses receives the poses of the path
   /// published last.
-  amha::lattice::PlanResult search(amha::lattice::LatticePlanner& planner, const PlannerParams& params,
-                                   const PlanQuery& query, const amha::lattice::Pose2D& start,
-                                   const amha::lattice::Pose2D& goal, const amha::SearchLimits& limits,
-                                   const SolutionSink& sink, Plan::Response* res,
+  amha::lattice::PlanResult search(amha::lattice::LatticePlanner& planner,
+                                   const PlannerParams& params, const PlanQuery& query,
+                                   const amha::lattice::Pose2D& start,
+                                   const amha::lattice::Pose2D& goal,
+                                   const amha::SearchLimits& limits, const SolutionSink& sink,
+                                   Plan::Response* res,
                                    std::vector<amha::lattice::Pose2D>* best_poses);
   /// Resolves a request pose into the global frame (tf2); false with status and message set.
   /// Throws TransformCancelled if `cancel` is set while it waits for a transform.
   bool toGlobalFrame(const geometry_msgs::PoseStamped& in, bool is_start, double tf_timeout,
-                     geometry_msgs::PoseStamped* out, Plan::Response* res, const std::atomic<bool>& cancel);
+                     geometry_msgs::PoseStamped* out, Plan::Response* res,
+                     const std::atomic<bool>& cancel);
   struct TransformCancelled {};
   /// tf2's transform target <- source at `time`, waiting up to `timeout` seconds for it; throws
   /// tf2::TransformException if there is none, TransformCancelled if `cancel` (may be null) is
   /// set while it waits.
-  geometry_msgs::TransformStamped lookupTransform(const std::string& target, const std::string& source,
-                                                  const ros::Time& time, double timeout,
-                                                  const std::atomic<bool>* cancel);
+  geometry_msgs::TransformStamped lookupTransform(const std::string& target,
+                                                  const std::string& source, const ros::Time& time,
+                                                  double timeout, const std::atomic<bool>* cancel);
 
   /// After a build or a request: returns freed heap to the system once much has been freed
   /// (a 4000 x 4000 map's planner frees tens of MB that glibc would otherwise keep).

@@ -24,15 +24,16 @@ AmhaPlannerConfig configFromParams(const PlannerParams& params);
 /// dynamic_reconfigure clamps) and for what its ranges cannot say: not a number, a weight
 /// between -1 and 1, an unknown algorithm or schedule, a heading count that is no multiple of 8,
 /// a malformed footprint. False with a message naming the parameter (resolved in pnh).
-bool paramsFromConfig(const AmhaPlannerConfig& config, const PlannerParams& base, const ros::NodeHandle& pnh,
-                      PlannerParams* out, std::string* error);
+bool paramsFromConfig(const AmhaPlannerConfig& config, const PlannerParams& base,
+                      const ros::NodeHandle& pnh, PlannerParams* out, std::string* error);
 
 /// Whether a planner can be built with params.lattice on `map` (the current map): the robot
 /// must fit in it, and a build on a free map of its resolution, as large as the robot, must
 /// pass (the primitives generated or read and checked against the resolution, the footprint
 /// and its sweeps, the cost model). map null (no map yet): the footprint alone is checked.
 /// False with the lattice's message.
-bool latticeBuilds(const PlannerParams& params, const amha::lattice::GridMap* map, std::string* error);
+bool latticeBuilds(const PlannerParams& params, const amha::lattice::GridMap* map,
+                   std::string* error);
 
 /// "name old -> new" for every parameter that differs, comma-separated (for the log).
 std::string changedParameters(const AmhaPlannerConfig& from, const AmhaPlannerConfig& to);

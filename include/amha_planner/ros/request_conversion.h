@@ -1,6 +1,6 @@
 // The interfaces' requests: ~plan's, ~make_plan's (nav_msgs/GetPlan) and ~plan_anytime's goal
-// as the one PlannerRequest the server plans, and a PlannerRequest checked against the parameters in
-// force as the library's query options. Pure functions: no node handle, no ROS master.
+// as the one PlannerRequest the server plans, and a PlannerRequest checked against the parameters
+// in force as the library's query options. Pure functions: no node handle, no ROS master.
 #pragma once
 
 #include <string>
@@ -43,6 +43,7 @@ struct PlanQuery {
 /// Checks `request` against `params` and gives its query; false with the reason in *error (an
 /// INVALID_REQUEST answer) for an unknown algorithm, weights out of range, or a time budget or
 /// tolerance that is negative or not finite.
-bool queryFor(const PlannerRequest& request, const PlannerParams& params, PlanQuery* query, std::string* error);
+bool queryFor(const PlannerRequest& request, const PlannerParams& params, PlanQuery* query,
+              std::string* error);
 
 }  // namespace amha_planner

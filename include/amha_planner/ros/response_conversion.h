@@ -26,12 +26,14 @@ std::uint32_t statusForQueryError(amha::lattice::QueryError error);
 
 /// A response that carries no path: `status`, `message`, the request's id and an empty path in
 /// `frame` stamped `stamp`; every other field as the message type initialises it.
-Plan::Response responseWithoutPath(std::uint32_t request_id, std::uint32_t status, std::string message,
-                                   const std::string& frame, const ros::Time& stamp = ros::Time());
+Plan::Response responseWithoutPath(std::uint32_t request_id, std::uint32_t status,
+                                   std::string message, const std::string& frame,
+                                   const ros::Time& stamp = ros::Time());
 
 /// The reply to a request the queue has no room for: BUSY, saying how many wait
 /// (~max_queued_requests), with an empty, unstamped path in `frame`.
-Plan::Response busyResponse(std::uint32_t request_id, int max_queued_requests, const std::string& frame);
+Plan::Response busyResponse(std::uint32_t request_id, int max_queued_requests,
+                            const std::string& frame);
 
 /// "time budget of 2.50 s used up": how TIME_EXHAUSTED answers, and a search that its budget
 /// stopped after a solution, begin.
@@ -43,10 +45,10 @@ std::string noMapMessage(const std::string& map_topic, const std::string& refuse
 
 /// How a request was planned, as its response quotes it.
 struct ResponseContext {
-  std::string frame;            ///< the global frame, the path's and the poses' frame
-  ros::Time stamp;              ///< their stamp
-  double time_budget = 0.0;     ///< seconds (0 already replaced by ~default_time_budget)
-  double max_memory_mb = 0.0;   ///< ~max_memory_mb in force for the request
+  std::string frame;           ///< the global frame, the path's and the poses' frame
+  ros::Time stamp;             ///< their stamp
+  double time_budget = 0.0;    ///< seconds (0 already replaced by ~default_time_budget)
+  double max_memory_mb = 0.0;  ///< ~max_memory_mb in force for the request
 };
 
 /// Completes `res` with the library's `result` of its request: planning time, expansions, and
@@ -56,7 +58,8 @@ struct ResponseContext {
 /// for the last solution: smoothed or not) with the cost and bounds of res->solutions.back().
 /// res->solutions holds the message published for each solution, in the order found (empty
 /// when there was none); request_id, the path's header and the solutions are kept.
-void completeResponse(const amha::lattice::PlanResult& result, const std::vector<amha::lattice::Pose2D>& best_poses,
+void completeResponse(const amha::lattice::PlanResult& result,
+                      const std::vector<amha::lattice::Pose2D>& best_poses,
                       const ResponseContext& context, Plan::Response* res);
 
 /// The action's result carrying `res`, every field moved (a result with every solution's path

@@ -94,9 +94,9 @@ struct PlannerConfig {
   /// How the weights fall between iterations (kDecrement uses dw1, dw2; kCertified the three
   /// parameters below).
   WeightSchedule weight_schedule = WeightSchedule::kDecrement;
-  double certified_ratio = 0.5;   ///< in [0, 1): the share of c - 1 the next bound keeps
-  double certified_split = 1.0;   ///< in [0, 1]: the exponent of the bound given to w1
-  double final_gap = 0.002;       ///< >= 0: below 1 + this, the next iteration is the proof
+  double certified_ratio = 0.5;  ///< in [0, 1): the share of c - 1 the next bound keeps
+  double certified_split = 1.0;  ///< in [0, 1]: the exponent of the bound given to w1
+  double final_gap = 0.002;      ///< >= 0: below 1 + this, the next iteration is the proof
   /// Publish a cheaper path as soon as an iteration finds it, not only when the iteration ends
   /// (A-MHA*, ARA*). Its bounds are those proven so far: the last finished iteration's w1 w2
   /// (infinite before the first) and cost / the best lower bound proven so far. Off: the
@@ -143,7 +143,7 @@ using SolutionCallback = std::function<void(const Solution&)>;
 struct SearchSummary {
   SearchStatus status = SearchStatus::kNoSolution;
   std::uint64_t expansions = 0;
-  std::size_t peak_states = 0;      ///< states generated (with search data) at the end
+  std::size_t peak_states = 0;        ///< states generated (with search data) at the end
   std::size_t peak_memory_bytes = 0;  ///< search arrays + domain, as counted for the cap
   double elapsed_s = 0.0;
 };
@@ -175,10 +175,10 @@ PlannerConfig defaultConfig(Algorithm algorithm);
 /// domains and front ends ask instead of listing algorithms.
 struct AlgorithmSpecs {
   bool inadmissible_heuristics = false;  ///< uses h_1..h_N (A-MHA*, MHA*)
-  bool w1 = false;   ///< w1: A-MHA*'s and MHA*'s, ARA*'s epsilon, weighted A*'s weight
-  bool w2 = false;   ///< A-MHA*, MHA*
-  bool dw1 = false;  ///< A-MHA*, ARA*
-  bool dw2 = false;  ///< A-MHA*
+  bool w1 = false;              ///< w1: A-MHA*'s and MHA*'s, ARA*'s epsilon, weighted A*'s weight
+  bool w2 = false;              ///< A-MHA*, MHA*
+  bool dw1 = false;             ///< A-MHA*, ARA*
+  bool dw2 = false;             ///< A-MHA*
   bool queue_schedule = false;  ///< the order of the inadmissible queues (A-MHA*, MHA*)
 };
 AlgorithmSpecs algorithmSpecs(Algorithm algorithm);

@@ -25,7 +25,8 @@ class StopCondition {
   /// Stops when *cancel becomes true (null: never) or `seconds` after now on `clock` (infinite
   /// or >= 1e9: never; negative counts as 0). kThreadCpu measures the calling thread, whichever
   /// thread asks later.
-  StopCondition(const std::atomic<bool>* cancel, double seconds, StopClock clock = StopClock::kWall);
+  StopCondition(const std::atomic<bool>* cancel, double seconds,
+                StopClock clock = StopClock::kWall);
 
   /// The cancel flag first, then the deadline (reads the clock only if there is a deadline).
   StopReason reason() const;

@@ -14,8 +14,8 @@ constexpr int kMinSize = 3;
 constexpr int kMaxSize = 9;
 
 struct Board {
-  int size = 0;                      ///< N: the board is N x N
-  std::vector<std::uint8_t> tiles;   ///< N*N entries, a permutation of 0 .. N*N-1
+  int size = 0;                     ///< N: the board is N x N
+  std::vector<std::uint8_t> tiles;  ///< N*N entries, a permutation of 0 .. N*N-1
 
   bool operator==(const Board& o) const { return size == o.size && tiles == o.tiles; }
   bool operator!=(const Board& o) const { return !(*this == o); }

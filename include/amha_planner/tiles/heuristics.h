@@ -38,8 +38,8 @@ struct TermWeights {
 /// `count` weight triples drawn uniformly from [lo, hi] (the paper: [1, 5]) from
 /// std::mt19937(seed). Computed as lo + (hi - lo) * u with u = rng() / 2^32, so the values are
 /// the same with every standard library (std::uniform_real_distribution is not portable).
-std::vector<TermWeights> randomTermWeights(std::size_t count, std::uint32_t seed,
-                                           double lo = 1.0, double hi = 5.0);
+std::vector<TermWeights> randomTermWeights(std::size_t count, std::uint32_t seed, double lo = 1.0,
+                                           double hi = 5.0);
 
 /// The anchor MD + LC.
 inline std::uint32_t anchorValue(const HeuristicTerms& t) {

@@ -28,8 +28,7 @@ class TilesProblem : public SearchProblem {
  public:
   /// Heuristic 0 is MD + LC; heuristic i >= 1 is weights[i-1] applied to (MD, LC, MT).
   /// Throws std::invalid_argument for a malformed or unsolvable start board.
-  static std::unique_ptr<TilesProblem> create(const Board& start,
-                                              std::vector<TermWeights> weights);
+  static std::unique_ptr<TilesProblem> create(const Board& start, std::vector<TermWeights> weights);
 
   int size() const { return size_; }
   const std::vector<TermWeights>& weights() const { return weights_; }

@@ -43,8 +43,9 @@ class CoarseLattice {
   /// from this one's only inside the rectangles `changed` (as HeuristicGridBuilder::repair does
   /// for the grids: only the states near the change, and those whose shortest path crossed
   /// it, are visited). Empty if `stop` asked to stop first.
-  std::vector<std::uint32_t> repairDistances(std::vector<std::uint32_t> old, const std::vector<CellRect>& changed,
-                                             int x, int y, int heading, bool forward = false,
+  std::vector<std::uint32_t> repairDistances(std::vector<std::uint32_t> old,
+                                             const std::vector<CellRect>& changed, int x, int y,
+                                             int heading, bool forward = false,
                                              const StopCondition* stop = nullptr) const;
   /// Index of the abstract state of lattice state (x, y, heading) in distancesTo's result.
   std::size_t index(int x, int y, int heading) const {
@@ -65,12 +66,13 @@ class CoarseLattice {
   /// kUnreachable if either block is impassable.
   std::uint32_t edgeCost(std::size_t vb, const AbstractEdge& e) const;
   /// Dijkstra from the nodes already in `heap` (their distances in dist); false if stopped.
-  bool propagate(const std::vector<std::vector<AbstractEdge>>& edges, std::vector<std::uint32_t>& dist,
-                 detail::RadixHeap& heap, const StopCondition* stop) const;
+  bool propagate(const std::vector<std::vector<AbstractEdge>>& edges,
+                 std::vector<std::uint32_t>& dist, detail::RadixHeap& heap,
+                 const StopCondition* stop) const;
 
   const LatticeGraph& graph_;
   int k_ = 1, headings_ = 1, pad_ = 0, pw_ = 0, ph_ = 0;
-  std::vector<std::uint8_t> block_cost_;  // padded; cheapest passable cell, 255 = none
+  std::vector<std::uint8_t> block_cost_;            // padded; cheapest passable cell, 255 = none
   std::vector<std::vector<AbstractEdge>> reverse_;  // per end heading: to the predecessors
   std::vector<std::vector<AbstractEdge>> forward_;  // per start heading: to the successors
 };

@@ -72,7 +72,8 @@ PrimitiveCells primitiveCells(const RobotFootprint& footprint, const std::vector
 
 /// Into how many steps the motion a -> b is cut: no footprint vertex moves more than a quarter
 /// cell in one (positions linear, heading along the shorter arc).
-int sweepSteps(const RobotFootprint& footprint, const Pose2D& a, const Pose2D& b, double resolution);
+int sweepSteps(const RobotFootprint& footprint, const Pose2D& a, const Pose2D& b,
+               double resolution);
 /// The pose after step s of n from a to b (s = n is b, up to rounding).
 Pose2D sweepSample(const Pose2D& a, const Pose2D& b, int s, int n);
 /// The footprint at `pose` (metres, relative to a cell's centre) in cell units of that cell
@@ -88,8 +89,8 @@ void footprintInCells(const RobotFootprint& footprint, const Pose2D& pose, doubl
 void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to,
                         std::vector<CellOffset>& out);
 /// The same for edge `edge` (from vertex edge to edge + 1) alone.
-void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to, std::size_t edge,
-                        std::vector<CellOffset>& out);
+void rasterizeEdgeSweep(const std::vector<CellPoint>& from, const std::vector<CellPoint>& to,
+                        std::size_t edge, std::vector<CellOffset>& out);
 
 /// Cells under the footprint at a pose relative to a cell centre (the centre cell included).
 std::vector<CellOffset> footprintCells(const RobotFootprint& footprint, const Pose2D& pose,

@@ -42,8 +42,12 @@ class CentreReachability {
     std::vector<std::pair<std::int64_t, std::int32_t>> heap;  // (distance^2, cell), a min-heap
     std::int32_t target = 0;
   };
-  static bool test(const std::vector<std::uint64_t>& bits, std::int32_t c) { return (bits[c >> 6] >> (c & 63)) & 1u; }
-  static void set(std::vector<std::uint64_t>& bits, std::int32_t c) { bits[c >> 6] |= std::uint64_t{1} << (c & 63); }
+  static bool test(const std::vector<std::uint64_t>& bits, std::int32_t c) {
+    return (bits[c >> 6] >> (c & 63)) & 1u;
+  }
+  static void set(std::vector<std::uint64_t>& bits, std::int32_t c) {
+    bits[c >> 6] |= std::uint64_t{1} << (c & 63);
+  }
   std::int64_t distance2(std::int32_t a, std::int32_t b) const;
   void push(Side& side, std::int32_t c);
   void retarget(Side& side, std::int32_t target);
@@ -81,8 +85,8 @@ struct GoalChoice {
 /// the goal's cell and the search stops at the first ring that cannot hold anything closer, so
 /// the work grows with the distance to the answer, not with the tolerance. `goal` must be a
 /// finite pose inside the map and tolerance >= 0 (infinity: anywhere on the map).
-GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, double tolerance, int start_x,
-                                int start_y, const StopCondition* stop);
+GoalChoice nearestReachableGoal(const LatticeGraph& graph, const Pose2D& goal, double tolerance,
+                                int start_x, int start_y, const StopCondition* stop);
 
 }  // namespace lattice
 }  // namespace amha

@@ -21,7 +21,8 @@ struct GridMove {
   int dx = 0, dy = 0;
   double length = 0.0;  ///< cells
   std::vector<CellOffset> required;
-  bool either_side = false;  ///< required = the two ends + the two side cells, one of which suffices
+  bool either_side =
+      false;  ///< required = the two ends + the two side cells, one of which suffices
 };
 
 /// The 8 neighbours (connectivity 8) or the 8 neighbours and the 8 knight moves (16).
@@ -29,7 +30,8 @@ std::vector<GridMove> gridMoves(int connectivity);
 
 /// Shortest walk (in cells of length) from (0, 0) to `to` using `moves` whose required cells
 /// all lie in `cells`; infinity if there is none.
-double walkLength(const std::vector<CellOffset>& cells, CellOffset to, const std::vector<GridMove>& moves);
+double walkLength(const std::vector<CellOffset>& cells, CellOffset to,
+                  const std::vector<GridMove>& moves);
 
 }  // namespace lattice
 }  // namespace amha

@@ -38,11 +38,18 @@ struct DistanceGrid {
   /// No finite distance exceeds this (the largest one after a full computation; kUnreachable - 1
   /// if a distance saturated).
   std::uint32_t max_distance = 0;
-  std::uint32_t at(int x, int y) const { return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)]; }
+  std::uint32_t at(int x, int y) const {
+    return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)];
+  }
 };
 
 /// Which grid; the anchor grid exists only with LatticeConfig::Heuristics::grid_anchor.
-enum class GridKind { kAnchor = 0, kPointRobot = 1, kInscribedOpening = 2, kCircumscribedOpening = 3 };
+enum class GridKind {
+  kAnchor = 0,
+  kPointRobot = 1,
+  kInscribedOpening = 2,
+  kCircumscribedOpening = 3
+};
 constexpr int kNumGridKinds = 4;
 
 /// The grids for one goal.
@@ -69,8 +76,9 @@ class HeuristicGridBuilder {
   /// configuration asks for, in parallel (up to `threads`, 0 = all hardware threads).
   /// `backward`: the tables are for a backward search, i.e. distances from (x, y, heading).
   /// Returns null if `stop` asked to stop before the tables were complete.
-  std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading, bool inadmissible = true,
-                                                unsigned threads = 0, bool backward = false,
+  std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading,
+                                                bool inadmissible = true, unsigned threads = 0,
+                                                bool backward = false,
                                                 const StopCondition* stop = nullptr) const;
   /// The grids of old's goal (old->goal_x, goal_y, goal_heading) for this builder's map,
   /// repaired from `old`: grids computed for a version of this map whose cells differed from
@@ -83,8 +91,9 @@ class HeuristicGridBuilder {
   /// in), they are repaired in place instead of copied, and are spent even if `stop` ends the
   /// repair. Null if `stop` asked to stop first.
   std::shared_ptr<const GoalHeuristics> repair(std::shared_ptr<const GoalHeuristics> old,
-                                               const std::vector<CellRect>& changed, bool inadmissible = true,
-                                               unsigned threads = 0, bool backward = false,
+                                               const std::vector<CellRect>& changed,
+                                               bool inadmissible = true, unsigned threads = 0,
+                                               bool backward = false,
                                                const StopCondition* stop = nullptr) const;
   /// One grid alone (for tests and timing).
   DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
@@ -96,8 +105,8 @@ class HeuristicGridBuilder {
     std::vector<std::int64_t> move_offsets;
     std::vector<std::int64_t> required;  // per move: kMaxRequired offsets (the two ends excluded)
     std::vector<int> required_count;
-    std::vector<char> either_side;       // per move: GridMove::either_side
-    std::vector<std::uint32_t> step;     // per move, 256 cost classes
+    std::vector<char> either_side;    // per move: GridMove::either_side
+    std::vector<std::uint32_t> step;  // per move, 256 cost classes
     std::uint32_t max_step = 0;
     std::uint32_t min_step = 0;  // of a passable move
     int reach = 1;               // cells: the farthest a move's end or required cell lies
@@ -106,17 +115,21 @@ class HeuristicGridBuilder {
   HeuristicGridBuilder(const LatticeGraph& graph, const HeuristicGridBuilder* previous);
   /// Builds kind k's tables; its levels from the map, or from `previous` (whose levels for kind
   /// k are the previous map's) where graph_.recomputed() says nothing changed.
-  void buildKind(int k, int connectivity, double units_per_cell, const std::vector<std::uint8_t>* mask,
-                 std::uint8_t max_cost_class, const HeuristicGridBuilder* previous);
+  void buildKind(int k, int connectivity, double units_per_cell,
+                 const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class,
+                 const HeuristicGridBuilder* previous);
   /// compute() and repair(): repairs from `old` where it can (old and changed non-null).
-  std::shared_ptr<const GoalHeuristics> computeOrRepair(int goal_x, int goal_y, int goal_heading, bool inadmissible,
-                                                        unsigned threads, bool backward, const StopCondition* stop,
+  std::shared_ptr<const GoalHeuristics> computeOrRepair(int goal_x, int goal_y, int goal_heading,
+                                                        bool inadmissible, unsigned threads,
+                                                        bool backward, const StopCondition* stop,
                                                         std::shared_ptr<const GoalHeuristics> old,
                                                         const std::vector<CellRect>* changed) const;
   // These return false when `stop` asked to stop (the grid is then incomplete).
-  bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid, const StopCondition* stop = nullptr) const;
+  bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid,
+           const StopCondition* stop = nullptr) const;
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
-                  const std::vector<CellRect>& changed, DistanceGrid& grid, const StopCondition* stop) const;  // grid may be old
+                  const std::vector<CellRect>& changed, DistanceGrid& grid,
+                  const StopCondition* stop) const;  // grid may be old
   /// Fills `grid` with `count` copies of `value`, or with `source`, in slices that check `stop`.
   bool fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
             const std::vector<std::uint32_t>* source, const StopCondition* stop) const;
@@ -126,10 +139,12 @@ class HeuristicGridBuilder {
   std::uint32_t moveCost(const Kind& kind, std::size_t i, std::size_t m) const;
   // Dijkstra from the cells already in `queue` (with their distances in dist).
   template <class Queue>
-  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop) const;
+  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue,
+                const StopCondition* stop) const;
   /// The 8-connected (kKnights false) and 16-connected moves, unrolled.
   template <bool kKnights, class Queue>
-  bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop) const;
+  bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
+                        const StopCondition* stop) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;

@@ -40,8 +40,8 @@
 #include <mutex>
 #include <vector>
 
-#include "amha_planner/search/types.h"
 #include "amha_planner/search/stop_condition.h"
+#include "amha_planner/search/types.h"
 
 namespace amha {
 namespace lattice {
@@ -54,8 +54,8 @@ struct KinematicMove {
   int start_heading = 0, end_heading = 0;
   Cost cost = 1;
   bool operator==(const KinematicMove& o) const {
-    return dx == o.dx && dy == o.dy && start_heading == o.start_heading && end_heading == o.end_heading &&
-           cost == o.cost;
+    return dx == o.dx && dy == o.dy && start_heading == o.start_heading &&
+           end_heading == o.end_heading && cost == o.cost;
   }
 };
 
@@ -112,14 +112,14 @@ class KinematicTables {
  public:
   /// cost_per_cell: s_c above (positive, <= cost / |d| for every move with d != 0);
   /// radius_cells: R (> 0), lowered if needed so that 2 s_c R fits the 16-bit entries.
-  KinematicTables(std::vector<KinematicMove> moves, std::vector<double> heading_angles, double cost_per_cell,
-                  int radius_cells);
+  KinematicTables(std::vector<KinematicMove> moves, std::vector<double> heading_angles,
+                  double cost_per_cell, int radius_cells);
 
   /// The tables of this action set and window, shared with every other caller that asks for
   /// the same (planners on other maps, incremental rebuilds): one build per process.
   static std::shared_ptr<KinematicTables> shared(const std::vector<KinematicMove>& moves,
-                                                 const std::vector<double>& heading_angles, double cost_per_cell,
-                                                 int radius_cells);
+                                                 const std::vector<double>& heading_angles,
+                                                 double cost_per_cell, int radius_cells);
 
   enum class Direction {
     kToGoal,     ///< cost from (dx, dy, h) to the origin with the given heading
@@ -136,7 +136,8 @@ class KinematicTables {
   /// Builds every slice lookup() can ask for in `direction` (one per orbit of headings), in
   /// parallel threads (0: all hardware threads), so that no query waits for one. False if
   /// `stop` asked to stop first (the slices finished so far are kept).
-  bool prepare(Direction direction, const StopCondition* stop = nullptr, unsigned threads = 0) const;
+  bool prepare(Direction direction, const StopCondition* stop = nullptr,
+               unsigned threads = 0) const;
 
   int radius() const { return radius_; }
   int numHeadings() const { return headings_; }
@@ -150,12 +151,13 @@ class KinematicTables {
   int slicesBuilt() const;
 
   /// Builds one slice outright (for tests): K for direction and canonical heading `heading`.
-  std::shared_ptr<const KinematicSlice> buildSlice(Direction direction, int heading, const StopCondition* stop) const;
+  std::shared_ptr<const KinematicSlice> buildSlice(Direction direction, int heading,
+                                                   const StopCondition* stop) const;
 
  private:
   struct Symmetry {
-    std::array<int, 4> m;      // (dx, dy) -> (m0 dx + m1 dy, m2 dx + m3 dy)
-    std::vector<int> perm;     // heading -> heading
+    std::array<int, 4> m;   // (dx, dy) -> (m0 dx + m1 dy, m2 dx + m3 dy)
+    std::vector<int> perm;  // heading -> heading
   };
   struct Entry;
   std::vector<KinematicMove> moves_;

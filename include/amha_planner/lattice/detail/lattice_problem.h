@@ -18,7 +18,9 @@ namespace lattice {
 
 struct LatticeState {
   int x = 0, y = 0, heading = 0;
-  bool operator==(const LatticeState& o) const { return x == o.x && y == o.y && heading == o.heading; }
+  bool operator==(const LatticeState& o) const {
+    return x == o.x && y == o.y && heading == o.heading;
+  }
 };
 
 class LatticeProblem final : public SearchProblem {
@@ -42,10 +44,12 @@ class LatticeProblem final : public SearchProblem {
   StateId start() const override { return start_; }
   StateId goal() const override { return goal_; }
   void successors(StateId s, std::vector<Edge>& out) override;
-  std::size_t numHeuristics() const override { return 1 + static_cast<std::size_t>(num_inadmissible_); }
+  std::size_t numHeuristics() const override {
+    return 1 + static_cast<std::size_t>(num_inadmissible_);
+  }
   void heuristics(StateId s, HeuristicValue* h, std::size_t count) override;
-  /// Unless LatticeConfig::Heuristics::inflate_heading_terms (and only with a heading-aware term in the
-  /// anchor): a weight inflates only the heuristics' heading-blind parts, the anchor's larger
+  /// Unless LatticeConfig::Heuristics::inflate_heading_terms (and only with a heading-aware term in
+  /// the anchor): a weight inflates only the heuristics' heading-blind parts, the anchor's larger
   /// of its Euclidean and grid terms and each inadmissible heuristic's Dijkstra.
   bool hasInflationBases() const override { return bases_; }
   void bases(StateId s, HeuristicValue* b, std::size_t count) override {
@@ -72,7 +76,8 @@ class LatticeProblem final : public SearchProblem {
   LatticeState state(StateId s) const {
     const std::uint64_t v = states_[s];
     const std::uint32_t cell = static_cast<std::uint32_t>(v >> 16);
-    return {static_cast<int>(cell % width_), static_cast<int>(cell / width_), static_cast<int>(v & 0xFFFF)};
+    return {static_cast<int>(cell % width_), static_cast<int>(cell / width_),
+            static_cast<int>(v & 0xFFFF)};
   }
   std::size_t numStates() const { return states_.size(); }
   /// The id of a state, creating it if new.
@@ -90,27 +95,28 @@ class LatticeProblem final : public SearchProblem {
  private:
   const LatticeGraph& graph_;
   std::shared_ptr<const GoalHeuristics> heur_;
-  const DistanceGrid* grids_[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};  // distinct ones
-  double scale_[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};                                  // their scales
+  const DistanceGrid* grids_[kNumGridKinds] = {nullptr, nullptr, nullptr,
+                                               nullptr};  // distinct ones
+  double scale_[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};    // their scales
   const std::uint32_t* coarse_ = nullptr;
   KinematicLookup kinematic_;
-  bool bases_ = false;                              // hasInflationBases()
+  bool bases_ = false;                             // hasInflationBases()
   HeuristicValue last_bases_[kNumGridKinds] = {};  // the bases of the state heuristics() saw last
-  bool kinematic_inadmissible_ = false;  // the inadmissible heuristics take the table too
+  bool kinematic_inadmissible_ = false;            // the inadmissible heuristics take the table too
   int num_inadmissible_;
   bool backward_ = false;
   int width_, headings_;
   int tiles_x_;
   std::size_t page_entries_;
-  std::vector<std::uint32_t*> pages_;                 // per 8 x 8 tile, null until touched
+  std::vector<std::uint32_t*> pages_;                    // per 8 x 8 tile, null until touched
   std::vector<std::unique_ptr<std::uint32_t[]>> slabs_;  // page storage, 64 pages a slab
   std::size_t slab_used_ = 0;
   std::vector<std::uint64_t> states_;  // cell << 16 | heading
   StateId start_ = kNoState, goal_ = kNoState, virtual_goal_ = kNoState;
   int goal_x_ = 0, goal_y_ = 0;
-  std::vector<Edge> into_goal_cell_;  // backward, any heading: the virtual start's edges
-  StateId virtual_start_ = kNoState;  // startAtExits()
-  std::vector<Edge> start_exits_;     //   and its edges
+  std::vector<Edge> into_goal_cell_;             // backward, any heading: the virtual start's edges
+  StateId virtual_start_ = kNoState;             // startAtExits()
+  std::vector<Edge> start_exits_;                //   and its edges
   std::vector<double> turn_euclid_, turn_grid_;  // turning terms per heading (cost units)
   static constexpr int kTile = 8;
   static constexpr std::size_t kPagesPerSlab = 64;

@@ -9,13 +9,12 @@
 #include <utility>
 #include <vector>
 
-#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/detail/lattice_problem.h"
+#include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/search/stop_condition.h"
 
 namespace amha {
 namespace lattice {
-
 
 /// The escape rule. From a state in collision (not LatticeGraph::stateValid), a motion may
 ///  - cross inscribed cells with the robot's centre (never lethal or unknown ones, except those
@@ -44,8 +43,8 @@ class StartEscape {
 
   /// `start` must be a state of `graph`'s map; tolerance >= 0 (metres) and penalty >= 1, finite.
   /// Explores every state in collision the rule reaches (`stop`, which may be null, ends it).
-  StartEscape(const LatticeGraph& graph, const LatticeState& start, double tolerance, double penalty,
-              const StopCondition* stop);
+  StartEscape(const LatticeGraph& graph, const LatticeState& start, double tolerance,
+              double penalty, const StopCondition* stop);
 
   Outcome outcome() const { return outcome_; }
   /// Every collision-free state the escape reaches, each at its cheapest escape cost.

@@ -15,7 +15,7 @@ namespace amha {
 /// resident between searches (a reused array gives back what it does not need, so searches
 /// still use only the memory their caps count).
 /// Off by default. Thread-safe; affects arrays freed after the call.
-void setReuseFreedSearchMemory(bool reuse,
-                               std::size_t max_pooled_bytes = std::numeric_limits<std::size_t>::max());
+void setReuseFreedSearchMemory(
+    bool reuse, std::size_t max_pooled_bytes = std::numeric_limits<std::size_t>::max());
 
 }  // namespace amha
