@@ -9,7 +9,7 @@ export PATH=/usr/bin:/bin:$PATH
 
 # Debian 12 packages (see ../shared/docs/ros-on-debian.md).
 AMHA_DEBS=(
-  build-essential cmake pkg-config googletest libgtest-dev clang libclang-rt-14-dev
+  build-essential cmake pkg-config googletest libgtest-dev clang clang-format libclang-rt-14-dev
   ros-core-dev catkin ros-message-generation libnodeletlib-dev libnodeletlib-tools
   libtf2-ros-dev libtf2-geometry-msgs-dev libnav-msgs-dev libmap-msgs-dev libgeometry-msgs-dev libvisualization-msgs-dev libstd-srvs-dev
   libactionlib-dev librostest-dev python3-rostest
