@@ -130,11 +130,8 @@ int benchPrimitivesMain(int argc, char** argv) {
       s.spec = t.substr(eq + 1);
       s.config = loaded.config;
       s.config.motion.mprim_file.clear();
-      if (s.spec == "near-minimal") {
-        s.config.motion.generator = lattice::PrimitiveGenerator::kNearMinimal;
-      } else if (s.spec == "legacy") {
-        s.config.motion.generator = lattice::PrimitiveGenerator::kLegacy;
-      } else {
+      // A generator's name, else a primitive file.
+      if (!lattice::parsePrimitiveGenerator(s.spec, &s.config.motion.generator)) {
         s.config.motion.mprim_file = s.spec;
       }
       s.planner.reset(new lattice::LatticePlanner(loaded.map, s.config));

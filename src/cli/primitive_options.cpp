@@ -33,15 +33,9 @@ void PrimitiveOptions::applyTo(lattice::LatticeConfig& c) const {
         "--reverse and --reverse-penalty apply to generated primitives and Nav2 files (.json), "
         "not to a .mprim file (its backward motions are in the file)");
   }
-  if (generator) {
-    if (*generator == "near-minimal") {
-      c.motion.generator = lattice::PrimitiveGenerator::kNearMinimal;
-    } else if (*generator == "legacy") {
-      c.motion.generator = lattice::PrimitiveGenerator::kLegacy;
-    } else {
-      throw std::invalid_argument("--primitive-generator must be near-minimal or legacy, not '" +
-                                  *generator + "'");
-    }
+  if (generator && !lattice::parsePrimitiveGenerator(*generator, &c.motion.generator)) {
+    throw std::invalid_argument("--primitive-generator must be near-minimal or legacy, not '" +
+                                *generator + "'");
   }
   if (motion_model && !lattice::parseMotionModel(*motion_model, &c.motion.model)) {
     throw std::invalid_argument("--motion-model must be diff, ackermann or omni, not '" +

@@ -23,18 +23,10 @@ std::string str(double v) {
 // floor(v) as an int, clamped (a pose far outside int range would otherwise be undefined).
 int floorDiv(double v) { return static_cast<int>(std::max(-2e9, std::min(2e9, std::floor(v)))); }
 
-// A primitive's path may be at most this many cells long: everything built from it (its cells,
-// the footprint's sweep) grows with its length. Real ones are a few cells to a few dozen (SBPL's
-// longest is 8; a 10 m turning radius at 0.05 m gives 80-cell arcs).
-constexpr double kMaxPrimitiveCells = 1000.0;
-
 // .mprim files do not say which part of a primitive is an arc, nor whether it drives
 // backwards: estimated from the poses (for writing Nav2 files).
 void describeShape(const PrimitiveSet& set, MotionPrimitive& p) {
-  double length = 0.0;
-  for (std::size_t k = 1; k < p.poses.size(); ++k) {
-    length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
-  }
+  const double length = detail::polylineLength(p.poses);
   const double turn =
       angleDistance(set.heading_angles[p.start_heading], set.heading_angles[p.end_heading]);
   p.arc_length =
@@ -135,15 +127,12 @@ PrimitiveSet readMprim(std::istream& in, const std::string& name, double map_res
       q.theta = t.number("an intermediate theta");
     }
     const int pose_line = t.tokenLine();
-    double length = 0.0;
-    for (long i = 1; i < count; ++i) {
-      length += std::hypot(p.poses[i].x - p.poses[i - 1].x, p.poses[i].y - p.poses[i - 1].y);
-    }
-    if (!(length / res <= kMaxPrimitiveCells)) {
+    const double length = detail::polylineLength(p.poses);
+    if (!(length / res <= detail::kMaxPrimitiveCells)) {
       t.failAt(pose_line, "primID " + std::to_string(p.id) + " (start heading " +
                               std::to_string(p.start_heading) + "): its intermediate poses are " +
                               str(length / res) + " cells long (at most " +
-                              str(kMaxPrimitiveCells) + ")");
+                              str(detail::kMaxPrimitiveCells) + ")");
     }
     // The first pose is the start cell's centre at the start heading.
     const Pose2D& first = p.poses.front();

@@ -16,8 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-// As for .mprim files: longer primitives make every precomputation that grows with them absurd.
-constexpr double kMaxPrimitiveCells = 1000.0;
 // An end pose may miss its cell centre and heading by this much (the files round to 5 decimals).
 constexpr double kEndCellTolerance = 0.01;   // cells
 constexpr double kEndAngleTolerance = 1e-3;  // radians
@@ -165,13 +163,10 @@ MotionPrimitive readPrimitive(const json& j, std::size_t k, const std::string& f
     p.poses.push_back(pose);
   }
   const double res = set.resolution;
-  double length = 0.0;
-  for (std::size_t i = 1; i < p.poses.size(); ++i) {
-    length += std::hypot(p.poses[i].x - p.poses[i - 1].x, p.poses[i].y - p.poses[i - 1].y);
-  }
-  if (!(length / res <= kMaxPrimitiveCells)) {
+  const double length = detail::polylineLength(p.poses);
+  if (!(length / res <= detail::kMaxPrimitiveCells)) {
     f.fail("its poses are " + str(length / res) + " cells long (at most " +
-           str(kMaxPrimitiveCells) + ")");
+           str(detail::kMaxPrimitiveCells) + ")");
   }
   const Pose2D& last = p.poses.back();
   const double ex = last.x / res, ey = last.y / res;

@@ -11,6 +11,14 @@ namespace amha {
 namespace lattice {
 namespace detail {
 
+double polylineLength(const std::vector<Pose2D>& poses) {
+  double length = 0.0;
+  for (std::size_t k = 1; k < poses.size(); ++k) {
+    length += std::hypot(poses[k].x - poses[k - 1].x, poses[k].y - poses[k - 1].y);
+  }
+  return length;
+}
+
 std::vector<Vec> headingVectors(int n) {
   const int m = n / 8;  // headings per octant
   for (int amax = m + 1; amax <= 64; ++amax) {

@@ -16,6 +16,14 @@ struct Vec {
   int x, y;
 };
 
+/// A primitive's path may be at most this many cells long: everything built from it (its cells,
+/// the footprint's sweep) grows with its length. Real ones are a few cells to a few dozen (SBPL's
+/// longest is 8; a 10 m turning radius at 0.05 m gives 80-cell arcs).
+constexpr double kMaxPrimitiveCells = 1000.0;
+
+/// The length of the polyline through `poses` (their units).
+double polylineLength(const std::vector<Pose2D>& poses);
+
 /// The N lattice directions (N a multiple of 8), counter-clockwise from (1, 0): per octant the
 /// smallest integer vectors nearest to uniform spacing, mirrored and rotated to the others.
 /// Throws LatticeError (kConfig) when no such vectors exist.

@@ -68,6 +68,17 @@ bool parseMotionModel(const std::string& text, MotionModel* model) {
   return true;
 }
 
+bool parsePrimitiveGenerator(const std::string& text, PrimitiveGenerator* generator) {
+  if (text == "near-minimal") {
+    *generator = PrimitiveGenerator::kNearMinimal;
+  } else if (text == "legacy") {
+    *generator = PrimitiveGenerator::kLegacy;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 const char* motionModelName(MotionModel model) {
   switch (model) {
     case MotionModel::kDifferential:

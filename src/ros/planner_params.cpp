@@ -169,11 +169,9 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
     bad(pnh, "motion_model", "'" + model + "' is not diff, ackermann or omni");
   }
   const std::string generator = getString(pnh, "primitive_generator", "near-minimal");
-  if (generator != "near-minimal" && generator != "legacy") {
+  if (!amha::lattice::parsePrimitiveGenerator(generator, &l.motion.generator)) {
     bad(pnh, "primitive_generator", "'" + generator + "' is not near-minimal or legacy");
   }
-  l.motion.generator = generator == "legacy" ? amha::lattice::PrimitiveGenerator::kLegacy
-                                             : amha::lattice::PrimitiveGenerator::kNearMinimal;
   l.cost.reverse_multiplier =
       getDouble(pnh, "reverse_penalty", l.cost.reverse_multiplier, 1e-3, 1e6);
   l.cost.penalty = getDouble(pnh, "cost_penalty", l.cost.penalty, 0.0, 1e6);

@@ -337,6 +337,24 @@ TEST(NearMinimalGenerator, OptimaNeverWorseThanTheLegacySetsAndSometimesBetter) 
   EXPECT_GE(better, 1) << "the new set was never strictly better on " << compared << " queries";
 }
 
+TEST(PrimitiveNames, GeneratorsAndMotionModelsParseOnlyTheirNames) {
+  PrimitiveGenerator g = PrimitiveGenerator::kNearMinimal;
+  EXPECT_TRUE(parsePrimitiveGenerator("legacy", &g));
+  EXPECT_EQ(g, PrimitiveGenerator::kLegacy);
+  EXPECT_TRUE(parsePrimitiveGenerator("near-minimal", &g));
+  EXPECT_EQ(g, PrimitiveGenerator::kNearMinimal);
+  EXPECT_FALSE(parsePrimitiveGenerator("Legacy", &g));
+  EXPECT_FALSE(parsePrimitiveGenerator("prims.mprim", &g));
+  EXPECT_EQ(g, PrimitiveGenerator::kNearMinimal);  // unchanged when refused
+  MotionModel m = MotionModel::kDifferential;
+  for (MotionModel each :
+       {MotionModel::kDifferential, MotionModel::kAckermann, MotionModel::kOmni}) {
+    EXPECT_TRUE(parseMotionModel(motionModelName(each), &m));
+    EXPECT_EQ(m, each);
+  }
+  EXPECT_FALSE(parseMotionModel("car", &m));
+}
+
 }  // namespace
 }  // namespace lattice
 }  // namespace amha

@@ -163,6 +163,8 @@ PrimitiveSet primitivesFor(const LatticeConfig& config, double resolution);
 bool parseMotionModel(const std::string& text, MotionModel* model);
 /// Nav2's names: "diff", "ackermann", "omni".
 const char* motionModelName(MotionModel model);
+/// "near-minimal", "legacy" -> PrimitiveGenerator; false for anything else.
+bool parsePrimitiveGenerator(const std::string& text, PrimitiveGenerator* generator);
 
 }  // namespace lattice
 }  // namespace amha
