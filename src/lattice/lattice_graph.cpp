@@ -99,7 +99,7 @@ constexpr std::size_t kBytesPerSweptCell = sizeof(std::int64_t) + sizeof(CellOff
 
 void throwIfStopped(const StopCondition* stop, const char* during) {
   if (stop == nullptr || !stop->requested()) return;
-  const bool cancelled = stop->cancelled();
+  const bool cancelled = stop->stoppedBy() == StopReason::kCancelled;
   throw SetupStopped(cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit,
                      std::string(cancelled ? "cancelled" : "time budget used up") +
                          " while building the planner (" + during + ")");

@@ -303,9 +303,10 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
 
 namespace {
 
-/// Why `stop` stopped something: its cancel flag, else the deadline.
+/// Why `stop` stopped something, as it said then.
 SearchStatus stoppedStatus(const StopCondition& stop) {
-  return stop.cancelled() ? SearchStatus::kCancelled : SearchStatus::kTimeLimit;
+  return stop.stoppedBy() == StopReason::kCancelled ? SearchStatus::kCancelled
+                                                    : SearchStatus::kTimeLimit;
 }
 
 /// The state plan() searches to, as `options` ask: the goal pose's state; with any heading, a

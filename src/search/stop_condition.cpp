@@ -14,10 +14,31 @@ StopCondition::StopCondition(const std::atomic<bool>* cancel, double seconds, St
   if (seconds < 1e9) seconds_ = std::max(0.0, seconds);  // NaN never stops, as before
 }
 
+StopCondition& StopCondition::operator=(const StopCondition& o) {
+  cancel_ = o.cancel_;
+  clock_ = o.clock_;
+  cpu_clock_ = o.cpu_clock_;
+  start_ = o.start_;
+  seconds_ = o.seconds_;
+  said_.store(o.said_.load(std::memory_order_relaxed), std::memory_order_relaxed);
+  return *this;
+}
+
 StopReason StopCondition::reason() const {
-  if (cancelled()) return StopReason::kCancelled;
-  if (hasDeadline() && elapsed() >= seconds_) return StopReason::kDeadline;
-  return StopReason::kNone;
+  const StopReason said = stoppedBy();
+  if (said != StopReason::kNone) return said;
+  StopReason now = StopReason::kNone;
+  if (cancelled()) {
+    now = StopReason::kCancelled;
+  } else if (hasDeadline() && elapsed() >= seconds_) {
+    now = StopReason::kDeadline;
+  } else {
+    return StopReason::kNone;
+  }
+  // Several threads may ask at once (the grids): the first answer stays.
+  int none = static_cast<int>(StopReason::kNone);
+  said_.compare_exchange_strong(none, static_cast<int>(now), std::memory_order_relaxed);
+  return stoppedBy();
 }
 
 double StopCondition::now() const {

@@ -24,11 +24,31 @@ TEST(StopCondition, WithoutFlagOrDeadlineNeverStops) {
 
 TEST(StopCondition, TheCancelFlagIsReadWhenAsked) {
   std::atomic<bool> cancel{false};
-  const StopCondition stop(&cancel, 0.0);
-  EXPECT_EQ(stop.reason(), StopReason::kDeadline);  // a zero budget is used up at once
+  const StopCondition stop(&cancel, 0.0);  // a zero budget is used up at once
+  EXPECT_FALSE(stop.cancelled());
   cancel = true;
   EXPECT_TRUE(stop.cancelled());
   EXPECT_EQ(stop.reason(), StopReason::kCancelled);  // the flag first
+}
+
+TEST(StopCondition, ItsFirstReasonStays) {
+  std::atomic<bool> cancel{false};
+  const StopCondition stop(&cancel, 0.0);
+  EXPECT_EQ(stop.stoppedBy(), StopReason::kNone);  // not asked yet
+  EXPECT_EQ(stop.reason(), StopReason::kDeadline);
+  cancel = true;  // later: the deadline stays the reason
+  EXPECT_EQ(stop.reason(), StopReason::kDeadline);
+  EXPECT_EQ(stop.stoppedBy(), StopReason::kDeadline);
+  const StopCondition copy = stop;
+  EXPECT_EQ(copy.stoppedBy(), StopReason::kDeadline);
+
+  std::atomic<bool> cancel2{false};
+  const StopCondition never(&cancel2, kNever);
+  EXPECT_FALSE(never.requested());
+  EXPECT_EQ(never.stoppedBy(), StopReason::kNone);
+  cancel2 = true;
+  EXPECT_EQ(never.reason(), StopReason::kCancelled);
+  EXPECT_EQ(never.stoppedBy(), StopReason::kCancelled);
 }
 
 TEST(StopCondition, AWallDeadlinePassesWhileTheThreadSleeps) {

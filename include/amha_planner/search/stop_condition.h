@@ -28,8 +28,17 @@ class StopCondition {
   StopCondition(const std::atomic<bool>* cancel, double seconds,
                 StopClock clock = StopClock::kWall);
 
+  StopCondition(const StopCondition& o) { *this = o; }
+  StopCondition& operator=(const StopCondition& o);
+
   /// The cancel flag first, then the deadline (reads the clock only if there is a deadline).
+  /// Once it has said to stop, it keeps that answer: the first reason is the reason.
   StopReason reason() const;
+  /// Why it stopped, as reason() first said (kNone if it has not said to stop): what callers
+  /// report afterwards, without asking the flag and the clock again.
+  StopReason stoppedBy() const {
+    return static_cast<StopReason>(said_.load(std::memory_order_relaxed));
+  }
   bool requested() const { return reason() != StopReason::kNone; }
   /// Only the cancel flag (no clock read).
   bool cancelled() const { return cancel_ != nullptr && cancel_->load(std::memory_order_relaxed); }
@@ -45,6 +54,7 @@ class StopCondition {
   clockid_t cpu_clock_{};  // the making thread's CPU clock (kThreadCpu)
   double start_ = 0.0;     // now() when made
   double seconds_ = std::numeric_limits<double>::infinity();
+  mutable std::atomic<int> said_{static_cast<int>(StopReason::kNone)};  // the first reason
 };
 
 }  // namespace amha
