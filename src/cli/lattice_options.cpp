@@ -48,10 +48,10 @@ void LatticeOptions::addTo(CLI::App& app) {
                  "seconds to turn 45 degrees in place (default 0.6; .cfg: the file's)");
   app.add_option("--inadmissible", inadmissible,
                  "number of inadmissible heuristics 0..3 (default 3)");
-  app.add_option(
-      "--anchor", anchor,
-      "admissible anchor heuristic: euclidean (the paper's) | grid (+ an 8-connected grid "
-      "relaxation) | coarse (+ a block abstraction of the lattice; default)");
+  app.add_option("--anchor", anchor,
+                 "admissible anchor heuristic: euclidean (the paper's) | grid (+ a grid "
+                 "relaxation, 8- or 16-connected: --anchor-connectivity) | coarse (+ a block "
+                 "abstraction of the lattice; default)");
   app.add_option("--coarse-block", coarse_block,
                  "cells per block side of the coarse anchor (default 0 = automatic)");
   app.add_option(
