@@ -172,16 +172,21 @@ struct LatticePlanner::Impl {
       poses.push_back(graph->cellPoseToMap(from.x, from.y, prim.poses[i]));
   }
 
-  std::vector<Pose2D> posesOf(const LatticeProblem& problem,
-                              const std::vector<StateId>& path) const {
+  /// The poses of a solution path, each motion the action its edge's label names (the search
+  /// found them when it costed the path: no action is looked up again).
+  std::vector<Pose2D> posesOf(const LatticeProblem& problem, const Solution& solution) const {
+    const std::vector<StateId>& path = solution.path;
     std::vector<Pose2D> poses;
     if (path.empty()) return poses;
+    if (solution.edge_labels.size() + 1 != path.size())
+      throw std::logic_error("lattice: a solution's edges are not labelled");
     const LatticeState s0 = problem.state(path.front());
     poses.push_back(graph->stateToPose(s0.x, s0.y, s0.heading));
     for (std::size_t k = 1; k < path.size(); ++k) {
-      const LatticeAction* a = problem.actionBetween(path[k - 1], path[k], nullptr);
-      if (a == nullptr)
+      const std::uint32_t label = solution.edge_labels[k - 1];
+      if (label >= graph->actions().size())
         throw std::logic_error("lattice: solution uses a transition that is not an action");
+      const LatticeAction* a = &graph->actions()[label];
       appendMotion(problem.state(path[k - 1]), *a, poses);
     }
     return poses;
@@ -536,10 +541,21 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
   }
   // Solution paths run start ... goal; an any-heading goal's virtual state ends them, and an
   // escape's virtual start begins them (its poses are put back by prependEscape).
-  auto lattice_path = [&](std::vector<StateId>& path) {
-    if (backward) std::reverse(path.begin(), path.end());
-    if (!path.empty() && path.back() == problem.virtualGoal()) path.pop_back();
-    if (!path.empty() && path.front() == problem.virtualStart()) path.erase(path.begin());
+  auto lattice_path = [&](Solution& sol) {
+    std::vector<StateId>& path = sol.path;
+    std::vector<std::uint32_t>& labels = sol.edge_labels;  // one per edge, in step with path
+    if (backward) {
+      std::reverse(path.begin(), path.end());
+      std::reverse(labels.begin(), labels.end());  // a backward edge's label is its forward action
+    }
+    if (!path.empty() && path.back() == problem.virtualGoal()) {
+      path.pop_back();
+      if (!labels.empty()) labels.pop_back();
+    }
+    if (!path.empty() && path.front() == problem.virtualStart()) {
+      path.erase(path.begin());
+      if (!labels.empty()) labels.erase(labels.begin());
+    }
   };
   SearchLimits remaining = limits;
   const double offset = result.escape_seconds + result.goal_seconds + result.heuristic_seconds;
@@ -547,8 +563,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
   SolutionCallback cb = [&](const Solution& sol) {
     LatticeSolution ls;
     ls.search = sol;
-    lattice_path(ls.search.path);
-    ls.poses = impl_->posesOf(problem, ls.search.path);
+    lattice_path(ls.search);
+    ls.poses = impl_->posesOf(problem, ls.search);
     if (escape) impl_->prependEscape(*escape, s, problem.state(ls.search.path.front()), ls);
     ls.elapsed_total_s = sol.elapsed_s + offset;
     result.solutions.push_back(std::move(ls));

@@ -135,7 +135,7 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
       const int x = st.x - a->dx, y = st.y - a->dy;
       const Cost c = graph_.edgeCost(x, y, *a);  // checks that (x, y) and the motion are in the map
       if (c == kInvalidEdge) continue;
-      out.push_back(Edge{id(x, y, a->start_heading), c});
+      out.push_back(Edge{id(x, y, a->start_heading), c, graph_.actionIndex(a)});
     }
     return;
   }
@@ -143,7 +143,7 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
        ++a) {
     const Cost c = graph_.edgeCost(st.x, st.y, *a);
     if (c == kInvalidEdge) continue;
-    out.push_back(Edge{id(st.x + a->dx, st.y + a->dy, a->end_heading), c});
+    out.push_back(Edge{id(st.x + a->dx, st.y + a->dy, a->end_heading), c, graph_.actionIndex(a)});
   }
   // Any heading at the goal's cell will do: on to the virtual goal, free (the search core allows
   // cost 0 on edges that lie on no cycle: nothing leaves the virtual goal).
@@ -174,23 +174,6 @@ void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost
   states_.push_back((static_cast<std::uint64_t>(e.y) * width_ + e.x) << 16 |
                     static_cast<std::uint64_t>(e.heading));
   start_ = virtual_start_;
-}
-
-const LatticeAction* LatticeProblem::actionBetween(StateId from, StateId to, Cost* cost) const {
-  const LatticeState a = state(from), b = state(to);
-  const LatticeAction* best = nullptr;
-  Cost best_cost = kInfiniteCost;
-  for (const LatticeAction* act = graph_.actionsBegin(a.heading);
-       act != graph_.actionsEnd(a.heading); ++act) {
-    if (a.x + act->dx != b.x || a.y + act->dy != b.y || act->end_heading != b.heading) continue;
-    const Cost c = graph_.edgeCost(a.x, a.y, *act);
-    if (c != kInvalidEdge && c < best_cost) {
-      best_cost = c;
-      best = act;
-    }
-  }
-  if (cost != nullptr) *cost = best_cost;
-  return best;
 }
 
 HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue* base) const {

@@ -71,15 +71,21 @@ bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
   std::reverse(sol.path.begin(), sol.path.end());
   // The path's own cost can be below g(goal) when ancestors improved after their child was
   // reached; report the true sum of edges (the bound proofs hold for g(goal) >= that sum).
+  // The same pass collects the edges' labels, for the domain to turn the path into its terms.
   Cost cost = 0;
   for (std::size_t k = 1; k < sol.path.size(); ++k) {
     p.successors(sol.path[k - 1], path_succ_);
     Cost best = kInfiniteCost;
+    std::uint32_t label = kNoLabel;
     for (const Edge& e : path_succ_) {
-      if (e.to == sol.path[k]) best = std::min(best, e.cost);
+      if (e.to == sol.path[k] && e.cost < best) {
+        best = e.cost;
+        label = e.label;
+      }
     }
     if (best == kInfiniteCost) throw std::logic_error("parent chain uses a non-edge");
     cost += best;
+    sol.edge_labels.push_back(label);
   }
   sol.cost = cost;
   if (only_if_cheaper && !result_.solutions.empty() && result_.solutions.back().cost <= cost)
@@ -90,6 +96,7 @@ bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, d
   // it too, since they bound g(goal) and LB, and its cost is lower still.
   if (!result_.solutions.empty() && result_.solutions.back().cost < sol.cost) {
     sol.path = result_.solutions.back().path;
+    sol.edge_labels = result_.solutions.back().edge_labels;
     sol.cost = result_.solutions.back().cost;
   }
   cost = sol.cost;

@@ -86,6 +86,10 @@ class LatticeGraph {
     return actions_.data() + action_index_[heading + 1];
   }
   const std::vector<LatticeAction>& actions() const { return actions_; }
+  /// `a`'s index in actions() (the label of its search edges).
+  std::uint32_t actionIndex(const LatticeAction* a) const {
+    return static_cast<std::uint32_t>(a - actions_.data());
+  }
   /// Actions ending in `heading` (for backward search).
   const std::vector<const LatticeAction*>& actionsInto(int heading) const {
     return actions_into_[heading];

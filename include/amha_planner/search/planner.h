@@ -124,6 +124,8 @@ struct PlannerConfig {
 /// One improved solution, reported as soon as it is found.
 struct Solution {
   std::vector<StateId> path;  ///< start ... goal
+  /// Edge::label of each edge of path (path.size() - 1 of them; kNoLabel for unlabelled ones).
+  std::vector<std::uint32_t> edge_labels;
   Cost cost = kInfiniteCost;  ///< the sum of the path's edge costs
   /// The bound the algorithm guarantees by construction: w1*w2 (A-MHA*, MHA*), epsilon (ARA*,
   /// weighted A*), ANA*'s E (infinite before its first bound), 1 for A*.

@@ -25,9 +25,19 @@ constexpr HeuristicValue kInfiniteHeuristic = std::numeric_limits<HeuristicValue
 /// An edge of the search graph. Costs must be >= 1: positive costs keep parent chains acyclic.
 /// The one exception is a cost of 0 on an edge that lies on no cycle (into a state with no
 /// successors, or out of one with no predecessors, as the lattice's virtual goal).
+/// An edge without a label.
+constexpr std::uint32_t kNoLabel = std::numeric_limits<std::uint32_t>::max();
+
 struct Edge {
-  StateId to;
-  Cost cost;
+  StateId to = kNoState;
+  /// The domain's name for the edge (the lattice's action), handed back with each solution
+  /// (Solution::edge_labels) so that the domain need not look its edges up again.
+  std::uint32_t label = kNoLabel;
+  Cost cost = 0;
+
+  Edge() = default;
+  Edge(StateId to_state, Cost edge_cost, std::uint32_t edge_label = kNoLabel)
+      : to(to_state), label(edge_label), cost(edge_cost) {}
 };
 
 }  // namespace amha

@@ -83,8 +83,6 @@ class LatticeProblem final : public SearchProblem {
   /// The id of a state, creating it if new.
   StateId id(int x, int y, int heading);
 
-  /// The cheapest valid action from `from` that ends in `to` (nullptr if none), and its cost.
-  const LatticeAction* actionBetween(StateId from, StateId to, Cost* cost) const;
   /// Anchor value (admissible and consistent): with the grid anchor, the largest of
   /// floor(Euclidean + turning term), floor(grid + turning term), the block abstraction's
   /// cost-to-go and the kinematic table's value; without it, the Euclidean distance alone (the
