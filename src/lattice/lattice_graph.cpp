@@ -99,10 +99,11 @@ constexpr std::size_t kBytesPerSweptCell = sizeof(std::int64_t) + sizeof(CellOff
 
 void throwIfStopped(const StopCondition* stop, const char* during) {
   if (stop == nullptr || !stop->requested()) return;
-  const bool cancelled = stop->stoppedBy() == StopReason::kCancelled;
-  throw SetupStopped(cancelled ? SearchStatus::kCancelled : SearchStatus::kTimeLimit,
-                     std::string(cancelled ? "cancelled" : "time budget used up") +
-                         " while building the planner (" + during + ")");
+  const SearchStatus status = stoppedStatus(*stop);
+  throw SetupStopped(
+      status,
+      std::string(status == SearchStatus::kCancelled ? "cancelled" : "time budget used up") +
+          " while building the planner (" + during + ")");
 }
 
 LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConfig& config,

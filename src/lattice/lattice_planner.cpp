@@ -308,12 +308,6 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
 
 namespace {
 
-/// Why `stop` stopped something, as it said then.
-SearchStatus stoppedStatus(const StopCondition& stop) {
-  return stop.stoppedBy() == StopReason::kCancelled ? SearchStatus::kCancelled
-                                                    : SearchStatus::kTimeLimit;
-}
-
 /// The state plan() searches to, as `options` ask: the goal pose's state; with any heading, a
 /// collision-free heading of its cell; with a tolerance, the substitute for a goal in
 /// collision. `result` holds checkQuery's verdict on entry; false if it is final (a query
@@ -558,7 +552,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     }
   };
   SearchLimits remaining = limits;
-  const double offset = result.escape_seconds + result.goal_seconds + result.heuristic_seconds;
+  const double offset = result.setupSeconds();
   remaining.time_limit_s = std::max(0.0, limits.time_limit_s - offset);
   SolutionCallback cb = [&](const Solution& sol) {
     LatticeSolution ls;

@@ -65,12 +65,11 @@ void MhaEngine::resetArrays(std::size_t used) {
 
 SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
                             const SolutionCallback& on_solution) {
-  const std::size_t nh = 1 + std::min(opt_.max_inadmissible, problem.numHeuristics() - 1);
+  const std::size_t in_use = 1 + std::min(opt_.max_inadmissible, problem.numHeuristics() - 1);
   const bool bases = problem.hasInflationBases();
-  if (records_.configure(nh, bases) || open_.size() != nh) {
+  if (records_.configure(in_use, bases) || open_.size() != in_use) {
     // A different heuristic count changes the record layout: start from empty records.
-    nh_ = nh;
-    open_.assign(nh_, OpenQueue());
+    open_.assign(in_use, OpenQueue());
     capacity_ = 0;
     used_ = 0;
   }
@@ -81,10 +80,10 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   small_keys_ = problem.smallIntegerKeys();
   resetQueues();
   iteration_ = 0;
-  dts_ = opt_.schedule == QueueSchedule::kDts && nh_ > 1;
+  dts_ = opt_.schedule == QueueSchedule::kDts && nh() > 1;
   next_queue_ = 1;
   if (dts_) {
-    schedule_.reset(nh_ - 1, opt_.schedule_seed);
+    schedule_.reset(nh() - 1, opt_.schedule_seed);
     next_queue_ = schedule_.pick();
   }
 
@@ -107,7 +106,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   if (h(start, kAnchor) != kInfiniteHeuristic) {
     const QueueEntry k0 = key(start, kAnchor);
     pushOpen(kAnchor, k0);
-    for (std::size_t i = 1; i < nh_; ++i) {
+    for (std::size_t i = 1; i < nh(); ++i) {
       const QueueEntry ki = key(start, i);
       if (admits(ki, k0.f) && pushOpen(i, ki) && dts_) schedule_.noteQueued(i, ki.h);
     }
@@ -209,15 +208,15 @@ void MhaEngine::generate(StateId s) {
   if (flags(s) & kGenerated) return;
   // Straight into the record: a copy of a few words through a buffer became a libc memmove
   // call (2 % of the time on Korf's 15-puzzles).
-  problem_->heuristics(s, records_.heuristicsOut(s), nh_);
-  if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), nh_);
+  problem_->heuristics(s, records_.heuristicsOut(s), nh());
+  if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), nh());
   flags(s) |= kGenerated;
   ++generated_;
 }
 
 bool MhaEngine::improvePath() {
   const StateId goal = problem_->goal();
-  const std::size_t n_inad = nh_ - 1;
+  const std::size_t n_inad = nh() - 1;
   for (;;) {
     if (stopped()) return false;  // e.g. a queue could not grow: OPEN is incomplete
     if (!cleanTop(kAnchor)) return true;
@@ -311,7 +310,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     const QueueEntry k0 = key(t, kAnchor);
     if (!pushOpen(kAnchor, k0)) return;
     if (f & kClosedInad) continue;
-    for (std::size_t i = 1; i < nh_; ++i) {
+    for (std::size_t i = 1; i < nh(); ++i) {
       const QueueEntry ki = key(t, i);
       if (admits(ki, k0.f)) {
         if (!pushOpen(i, ki)) return;
@@ -348,7 +347,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // line 19's test, so either choice is correct; filtering keeps OPEN_i identical to what
   // Expand would have built with the new weights (one invariant, checked by the tests), and
   // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
-  for (std::size_t i = 1; i < nh_; ++i) {
+  for (std::size_t i = 1; i < nh(); ++i) {
     for (std::size_t k = 0; k < members_.size(); ++k) {  // exactly OPEN_0's entries
       if (interrupted(k)) return false;
       const StateId s = members_[k];
@@ -403,7 +402,7 @@ Cost MhaEngine::collectOpen0AndIncons() {
 
 void MhaEngine::checkInvariants() const {
   auto fail = [](const std::string& what) { throw std::logic_error("A-MHA* invariant: " + what); };
-  for (std::size_t i = 0; i < nh_; ++i) {
+  for (std::size_t i = 0; i < nh(); ++i) {
     std::size_t members = 0;
     open_[i].forEach([&](double f, StateId s) {
       if (!isMember(i, f, s)) return;  // stale

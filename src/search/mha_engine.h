@@ -69,6 +69,7 @@ class MhaEngine : public SearchBase {
   // (state_records.h). The queues hold entries lazily (see lazy_queue.h): an entry describes a
   // member iff its state's bit is set and its key is the state's current key; anything else is
   // stale and skipped.
+  std::size_t nh() const { return records_.heuristics(); }  // in use, anchor included
   Cost g(StateId s) const { return records_.g(s); }
   void setG(StateId s, Cost g) { records_.setG(s, g); }
   void setParent(StateId s, StateId p) { records_.setParent(s, p); }
@@ -142,7 +143,6 @@ class MhaEngine : public SearchBase {
   void resetArrays(std::size_t used) override;
 
   MhaEngineOptions opt_;
-  std::size_t nh_ = 1;  // heuristics in use, anchor included
   double w1_ = 1.0, w2_ = 1.0;
   bool small_keys_ = false;  // the problem allows bucket queues
   int iteration_ = 0;

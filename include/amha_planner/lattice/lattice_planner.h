@@ -127,10 +127,10 @@ struct PlanResult {
     for (const LatticeSolution& s : solutions) out.push_back(&s.search);
     return out;
   }
-  /// Seconds of the whole call: the escape, the goal choice, the heuristics and the search.
-  double totalSeconds() const {
-    return escape_seconds + goal_seconds + heuristic_seconds + search.elapsed_s;
-  }
+  /// Seconds before the search: the escape, the goal choice and the heuristics.
+  double setupSeconds() const { return escape_seconds + goal_seconds + heuristic_seconds; }
+  /// Seconds of the whole call: setupSeconds() and the search.
+  double totalSeconds() const { return setupSeconds() + search.elapsed_s; }
 
   /// How the last solution left the start's collision (empty without an escape).
   std::string escape_message;

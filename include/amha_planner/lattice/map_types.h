@@ -69,6 +69,12 @@ class LatticeError : public std::runtime_error {
   Kind kind_;
 };
 
+/// The status of work that `stop` stopped, as it said then: kCancelled, else kTimeLimit.
+inline SearchStatus stoppedStatus(const StopCondition& stop) {
+  return stop.stoppedBy() == StopReason::kCancelled ? SearchStatus::kCancelled
+                                                    : SearchStatus::kTimeLimit;
+}
+
 /// The per-map work of a LatticePlanner constructed with limits (footprint sweeps, clearance,
 /// openings, heuristic tables) was stopped by the cancel flag, the time budget or the memory
 /// cap; status() says which (kCancelled, kTimeLimit, kMemoryLimit) and what() why.
