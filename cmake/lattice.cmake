@@ -104,6 +104,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/goal_tolerance_test.cpp
     test/lattice/any_goal_heading_test.cpp
     test/lattice/kinematic_table_test.cpp
+    test/lattice/state_keys_test.cpp
     test/lattice/start_escape_test.cpp
     test/lattice/path_smoother_test.cpp
     test/lattice/ana_star_lattice_test.cpp

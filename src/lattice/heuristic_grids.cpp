@@ -67,13 +67,13 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
   // heuristics, grids like the anchor's (its moves, where the centre may be) at full scale.
   auto opening = [&](int k, int which) {
     if (kinematic && needed_[0]) {
-      buildKind(k, connectivity, s, &graph.openedFree(which), kInscribedCost - 1, previous);
+      buildKind(k, connectivity, s, graph.openedFree(which), kInscribedCost - 1, previous);
       if (kinds_[k].level == kinds_[0].level) {
         alias_[k] = 0;
         scale_[k] = scale_[1];
       }
     } else {
-      buildKind(k, 8, s, &graph.openedFree(which), kLethalCost - 1, previous);
+      buildKind(k, 8, s, graph.openedFree(which), kLethalCost - 1, previous);
       if (needed_[1] && kinds_[k].level == kinds_[1].level) {
         alias_[k] = alias_[1];
         scale_[k] = scale_[1];

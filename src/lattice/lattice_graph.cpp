@@ -377,20 +377,18 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
   // obstacle. Both steps are exact Euclidean distance transforms.
   for (int k = 0; k < 2; ++k) {
-    if (k == 1 && radii[1] == radii[0]) {
-      opened_[1] = opened_[0];
-      break;
-    }
+    // One mask for a round robot's one radius, none for a point: the heuristics' grids
+    // already keep to cells below lethal (openedFree).
+    openings_shared_ = radii[1] == radii[0];
+    if (k == 1 && openings_shared_) break;
     const double r = radii[k];
     std::vector<std::uint8_t>& o = opened_[k];
-    o.resize(cells);
     if (r <= 0.0) {
-      for (int y = out.y0; y < out.y1; ++y) {
-        const std::size_t row = static_cast<std::size_t>(y) * w;
-        for (int x = out.x0; x < out.x1; ++x) o[row + x] = map_->cost[row + x] < kLethalCost;
-      }
+      o.clear();
+      o.shrink_to_fit();
       continue;
     }
+    o.resize(cells);
     cv::Mat not_eroded(ch, cw, CV_8U);
     for (int y = 0; y < ch; ++y) {
       const float* d = dist.ptr<float>(y);
@@ -407,7 +405,7 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
       }
     }
   }
-  openings_equal_ = opened_[0] == opened_[1];
+  openings_equal_ = openings_shared_ || opened_[0] == opened_[1];
 }
 
 void LatticeGraph::computeAnchorScales() {

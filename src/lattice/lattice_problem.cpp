@@ -20,7 +20,8 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph,
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
       backward_(backward),
       width_(graph.width()),
-      headings_(graph.numHeadings()) {
+      headings_(graph.numHeadings()),
+      keys_(graph.width(), graph.height(), graph.numHeadings(), kVirtualHeading) {
   if (graph.numHeadings() > 0xFFFF)
     throw LatticeError(LatticeError::Kind::kConfig, "too many headings");
   for (int k = 0; k < kNumGridKinds; ++k)
@@ -79,9 +80,7 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph,
     goal_ = id(goal.x, goal.y, goal.heading);
     return;
   }
-  virtual_goal_ = static_cast<StateId>(states_.size());
-  states_.push_back((static_cast<std::uint64_t>(lattice_goal.y) * width_ + lattice_goal.x) << 16 |
-                    kVirtualHeading);
+  virtual_goal_ = keys_.add(lattice_goal.x, lattice_goal.y, kVirtualHeading);
   if (backward) {
     start_ = virtual_goal_;
     goal_ = id(goal.x, goal.y, goal.heading);
@@ -112,9 +111,7 @@ StateId LatticeProblem::id(int x, int y, int heading) {
   std::uint32_t& slot =
       page[static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading];
   if (slot == kNoState) {
-    slot = static_cast<StateId>(states_.size());
-    const std::uint64_t cell = static_cast<std::uint64_t>(y) * width_ + x;
-    states_.push_back(cell << 16 | static_cast<std::uint64_t>(heading));
+    slot = keys_.add(x, y, heading);
   }
   return slot;
 }
@@ -170,9 +167,7 @@ void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost
   }
   // Not in the paged index: a state of its own, which state() reads as that exit.
   const LatticeState& e = exits[best].first;
-  virtual_start_ = static_cast<StateId>(states_.size());
-  states_.push_back((static_cast<std::uint64_t>(e.y) * width_ + e.x) << 16 |
-                    static_cast<std::uint64_t>(e.heading));
+  virtual_start_ = keys_.add(e.x, e.y, e.heading);
   start_ = virtual_start_;
 }
 
@@ -230,7 +225,7 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
 }
 
 std::size_t LatticeProblem::memoryBytes() const {
-  return states_.capacity() * sizeof(std::uint64_t) + pages_.capacity() * sizeof(std::uint32_t*) +
+  return keys_.bytes() + pages_.capacity() * sizeof(std::uint32_t*) +
          slabs_.size() * kPagesPerSlab * page_entries_ * sizeof(std::uint32_t);
 }
 

@@ -113,7 +113,7 @@ GridMap loadMapFile(const std::string& path, double movingai_resolution, int mov
   if (endsWith(path, ".map")) return loadMovingAiMap(path, movingai_resolution, movingai_upscale);
   if (endsWith(path, ".cfg")) {
     SbplEnvironment e = loadSbplEnvironment(path);
-    GridMap m = e.map;
+    GridMap m = std::move(e.map);  // one copy of the cells: env keeps the header only
     if (env != nullptr) *env = std::move(e);
     return m;
   }

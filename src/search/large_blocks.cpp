@@ -1,4 +1,4 @@
-#include "large_blocks.h"
+#include "amha_planner/search/detail/large_blocks.h"
 
 #include <sys/mman.h>
 #include <unistd.h>

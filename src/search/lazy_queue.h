@@ -10,8 +10,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "amha_planner/search/detail/realloc_vector.h"
 #include "amha_planner/search/types.h"
-#include "realloc_vector.h"
 
 namespace amha {
 namespace detail {

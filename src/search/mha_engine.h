@@ -8,9 +8,9 @@
 #include <functional>
 #include <vector>
 
+#include "amha_planner/search/detail/realloc_vector.h"
 #include "dts_schedule.h"
 #include "open_queue.h"
-#include "realloc_vector.h"
 #include "search_base.h"
 #include "state_records.h"
 

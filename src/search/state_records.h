@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "amha_planner/search/detail/realloc_vector.h"
 #include "amha_planner/search/types.h"
-#include "realloc_vector.h"
 
 namespace amha {
 namespace detail {

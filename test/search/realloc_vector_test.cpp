@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "../../src/search/realloc_vector.h"
 #include "amha_planner/search/detail/memory_reuse.h"
+#include "amha_planner/search/detail/realloc_vector.h"
 
 namespace amha {
 namespace detail {

@@ -167,8 +167,13 @@ class LatticeGraph {
   /// built from a previous one, those the change could reach (the rest are the previous
   /// graph's; they and the map's costs are equal there).
   const CellRect& recomputed() const { return recomputed_; }
-  /// Free space (1) opened by the inscribed (index 0) / circumscribed (index 1) radius.
-  const std::vector<std::uint8_t>& openedFree(int which) const { return opened_[which]; }
+  /// Free space (1) opened by the inscribed (index 0) / circumscribed (index 1) radius, or
+  /// nullptr when that radius is 0 (a point robot: every cell below lethal, no mask to keep).
+  /// A round robot's two radii are one: both indices give the same mask.
+  const std::vector<std::uint8_t>* openedFree(int which) const {
+    const std::vector<std::uint8_t>& o = opened_[which == 1 && openings_shared_ ? 0 : which];
+    return o.empty() ? nullptr : &o;
+  }
   /// True when the two openings are the same cells (then the heuristics share one grid).
   bool openingsEqual() const { return openings_equal_; }
 
@@ -205,7 +210,8 @@ class LatticeGraph {
   std::vector<float> class_radii_;  // the distinct sweep radii, ascending (at most 255)
   float clearance_cap_ = 0.0f;
   CellRect recomputed_;
-  std::vector<std::uint8_t> opened_[2];
+  std::vector<std::uint8_t> opened_[2];  // empty: radius 0, no mask (openedFree)
+  bool openings_shared_ = false;         // equal radii: opened_[1] is not kept
   bool openings_equal_ = false;
   double euclid_per_cell_ = 0.0, grid_anchor_per_cell_ = 0.0, cheapest_per_cell_ = 0.0;
   double euclid_turn_per_rad_ = 0.0, grid_turn_per_rad_ = 0.0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "amha_planner/lattice/detail/heuristic_grids.h"
+#include "amha_planner/lattice/detail/state_keys.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/search/problem.h"
 
@@ -74,12 +75,11 @@ class LatticeProblem final : public SearchProblem {
   static constexpr int kVirtualHeading = 0xFFFF;
 
   LatticeState state(StateId s) const {
-    const std::uint64_t v = states_[s];
-    const std::uint32_t cell = static_cast<std::uint32_t>(v >> 16);
-    return {static_cast<int>(cell % width_), static_cast<int>(cell / width_),
-            static_cast<int>(v & 0xFFFF)};
+    LatticeState out;
+    keys_.at(s, &out.x, &out.y, &out.heading);
+    return out;
   }
-  std::size_t numStates() const { return states_.size(); }
+  std::size_t numStates() const { return keys_.size(); }
   /// The id of a state, creating it if new.
   StateId id(int x, int y, int heading);
 
@@ -109,7 +109,7 @@ class LatticeProblem final : public SearchProblem {
   std::vector<std::uint32_t*> pages_;                    // per 8 x 8 tile, null until touched
   std::vector<std::unique_ptr<std::uint32_t[]>> slabs_;  // page storage, 64 pages a slab
   std::size_t slab_used_ = 0;
-  std::vector<std::uint64_t> states_;  // cell << 16 | heading
+  StateKeys keys_;
   StateId start_ = kNoState, goal_ = kNoState, virtual_goal_ = kNoState;
   int goal_x_ = 0, goal_y_ = 0;
   std::vector<Edge> into_goal_cell_;             // backward, any heading: the virtual start's edges

@@ -21,7 +21,7 @@
 #include <new>
 #include <type_traits>
 
-#include "large_blocks.h"
+#include "amha_planner/search/detail/large_blocks.h"
 
 namespace amha {
 namespace detail {
