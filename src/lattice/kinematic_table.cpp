@@ -58,8 +58,23 @@ constexpr int kAnyKey = -1;  // the entry key of kAnyHeading
 
 KinematicSlice::KinematicSlice(int radius, int num_headings)
     : radius_(radius), headings_(num_headings) {
+  layOut();
+}
+
+KinematicSlice::KinematicSlice(int radius, int num_headings, const std::array<int, 4>& m,
+                               const std::vector<int>& perm)
+    : radius_(radius), headings_(num_headings), folded_(true), m_(m), perm_(perm) {
+  // A reflection is I - 2 n n^T / |n|^2: a nonzero column of I - m points along n.
+  n_ = {1 - m[0], -m[2]};
+  if (n_[0] == 0 && n_[1] == 0) n_ = {-m[1], 1 - m[3]};
+  layOut();
+}
+
+void KinematicSlice::layOut() {
+  const int radius = radius_;
   row_start_.assign(static_cast<std::size_t>(2 * radius + 2), 0);
-  half_width_.assign(static_cast<std::size_t>(2 * radius + 1), 0);
+  lo_.assign(static_cast<std::size_t>(2 * radius + 1), 0);
+  hi_.assign(static_cast<std::size_t>(2 * radius + 1), -1);
   for (int dy = -radius; dy <= radius; ++dy) {
     const std::size_t row = static_cast<std::size_t>(dy + radius);
     // The largest w with w^2 + dy^2 <= R^2 (integers, so no rounding doubt).
@@ -67,15 +82,21 @@ KinematicSlice::KinematicSlice(int radius, int num_headings)
         std::sqrt(static_cast<double>(radius) * radius - static_cast<double>(dy) * dy));
     while (w * w + dy * dy > radius * radius) --w;
     while ((w + 1) * (w + 1) + dy * dy <= radius * radius) ++w;
-    half_width_[row] = w;
-    row_start_[row + 1] = row_start_[row] + static_cast<std::uint32_t>(2 * w + 1);
+    int lo = -w, hi = w;
+    if (folded_) {  // n . (x, dy) >= 0 with n a multiple of (1, 0), (0, 1), (1, 1) or (1, -1)
+      while (lo <= hi && !kept(lo, dy)) ++lo;
+      while (hi >= lo && !kept(hi, dy)) --hi;
+    }
+    lo_[row] = lo;
+    hi_[row] = hi;
+    row_start_[row + 1] = row_start_[row] + static_cast<std::uint32_t>(hi >= lo ? hi - lo + 1 : 0);
   }
 }
 
 std::size_t KinematicSlice::bytes() const {
   return values_.capacity() * sizeof(std::uint16_t) +
          row_start_.capacity() * sizeof(std::uint32_t) +
-         half_width_.capacity() * sizeof(std::int32_t);
+         (lo_.capacity() + hi_.capacity()) * sizeof(std::int32_t) + perm_.capacity() * sizeof(int);
 }
 
 struct KinematicTables::Entry {
@@ -163,7 +184,17 @@ std::shared_ptr<KinematicTables> KinematicTables::shared(const std::vector<Kinem
 
 std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction direction, int heading,
                                                                   const StopCondition* stop) const {
-  auto slice = std::make_shared<KinematicSlice>(radius_, headings_);
+  // A reflection that fixes the heading (any one, for kAnyKey) halves the slice.
+  const Symmetry* mirror = nullptr;
+  for (const Symmetry& sym : symmetries_) {
+    const bool reflection = sym.m[0] * sym.m[3] - sym.m[1] * sym.m[2] < 0;
+    if (reflection && mirror == nullptr &&
+        (heading == kAnyKey || sym.perm[static_cast<std::size_t>(heading)] == heading))
+      mirror = &sym;
+  }
+  auto slice = mirror != nullptr
+                   ? std::make_shared<KinematicSlice>(radius_, headings_, mirror->m, mirror->perm)
+                   : std::make_shared<KinematicSlice>(radius_, headings_);
   const int R = radius_, nh = headings_;
   const std::size_t cells = slice->cells();
   slice->values_.assign(cells * static_cast<std::size_t>(nh), 0xFFFF);
@@ -179,8 +210,8 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   // The offset of each cell of the disc, to decode popped states.
   std::vector<std::array<std::int16_t, 2>> offset(cells);
   for (int y = -R; y <= R; ++y) {
-    const int w = slice->half_width_[static_cast<std::size_t>(y + R)];
-    for (int x = -w; x <= w; ++x) {
+    const std::size_t row = static_cast<std::size_t>(y + R);
+    for (int x = slice->lo_[row]; x <= slice->hi_[row]; ++x) {
       offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x),
                                                                       static_cast<std::int16_t>(y)};
     }
@@ -218,7 +249,9 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
             limit + slack) {
           continue;
         }
-        const std::size_t j = slice->index(px, py, to_goal ? m.start_heading : m.end_heading);
+        int qx = px, qy = py, qh = to_goal ? m.start_heading : m.end_heading;
+        if (slice->folded()) slice->canonical(&qx, &qy, &qh);
+        const std::size_t j = slice->index(qx, qy, qh);
         if (nd < dist[j]) {
           dist[j] = static_cast<std::uint16_t>(nd);
           queue.push(static_cast<std::uint32_t>(nd), static_cast<std::uint32_t>(j));
@@ -236,10 +269,24 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
     complete = search(queue);
   }
   if (!complete) return nullptr;
+  // A state on the mirror line is its mirror image's twin (canonical()): copy its cost there.
+  if (slice->folded()) {
+    for (int y = -R; y <= R; ++y) {
+      const std::size_t row = static_cast<std::size_t>(y + R);
+      for (int x = slice->lo_[row]; x <= slice->hi_[row]; ++x) {
+        if (slice->n_[0] * x + slice->n_[1] * y != 0) continue;
+        std::uint16_t* v = dist + slice->index(x, y, 0);
+        for (int k = 0; k < nh; ++k)
+          v[k] = v[slice->perm_[static_cast<std::size_t>(k)] < k
+                       ? slice->perm_[static_cast<std::size_t>(k)]
+                       : k];
+      }
+    }
+  }
   // The cap: K = min(T, floor(G)) with G = s (2R - |p|).
   for (int y = -R; y <= R; ++y) {
-    const int w = slice->half_width_[static_cast<std::size_t>(y + R)];
-    for (int x = -w; x <= w; ++x) {
+    const std::size_t row = static_cast<std::size_t>(y + R);
+    for (int x = slice->lo_[row]; x <= slice->hi_[row]; ++x) {
       const double g =
           s_ * (2.0 * R - std::sqrt(static_cast<double>(x) * x + static_cast<double>(y) * y));
       const std::uint16_t cap = static_cast<std::uint16_t>(std::floor(g));

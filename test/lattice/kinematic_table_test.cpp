@@ -28,7 +28,11 @@ namespace lattice {
 
 // Reaches into a slice to mutate it (the mutation test).
 struct KinematicTableTestAccess {
-  static void raise(KinematicSlice& s, int dx, int dy, int h) { ++s.values_[s.index(dx, dy, h)]; }
+  // Raises the entry that (dx, dy, h) reads (in a folded slice, maybe its mirror image's).
+  static void raise(KinematicSlice& s, int dx, int dy, int h) {
+    if (!s.kept(dx, dy)) s.fold(&dx, &dy, &h);
+    ++s.values_[s.index(dx, dy, h)];
+  }
   static KinematicLookup with(KinematicLookup lookup, std::shared_ptr<const KinematicSlice> slice) {
     lookup.slice_ = std::move(slice);
     return lookup;
@@ -367,9 +371,48 @@ TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
       emptyLatticeCosts(movesOf(g), g.numHeadings(), 2 * t.radius() + 2, Direction::kToGoal, 0);
   KinematicLookup lookup = t.lookup(Direction::kToGoal, 0);
   EXPECT_EQ(mismatches(lookup, exact, t, nullptr), 0);
+  // Heading 0's table is folded along the x axis: an entry on the axis is read by one state,
+  // one off it by that state and its mirror image.
+  ASSERT_TRUE(slice->folded());
+  auto on_axis = std::make_shared<KinematicSlice>(*slice);
+  KinematicTableTestAccess::raise(*on_axis, 3, 0, 5);
+  EXPECT_EQ(mismatches(KinematicTableTestAccess::with(lookup, on_axis), exact, t, nullptr), 1);
   KinematicTableTestAccess::raise(*slice, 3, -2, 5);
   const KinematicLookup mutated = KinematicTableTestAccess::with(lookup, slice);
-  EXPECT_EQ(mismatches(mutated, exact, t, nullptr), 1);
+  EXPECT_EQ(mismatches(mutated, exact, t, nullptr), 2);
+}
+
+// Folding: the tables of headings that a reflection fixes keep half the disc, the others all
+// of it; every entry stays exact (EveryEntryIsTheCappedExactCost... checks each heading).
+TEST(KinematicTable, TablesFixedByAReflectionKeepHalfTheDisc) {
+  LatticeConfig c;
+  c.motion.turning_radius = 0.2;
+  c.heuristics.kinematic_radius = 0.05 * 20;
+  auto map = std::make_shared<GridMap>();
+  map->width = map->height = 8;
+  map->resolution = 0.05;
+  map->cost.assign(64, kFreeCost);
+  const LatticeGraph g(map, c);
+  const KinematicTables& t = *g.kinematicTables();
+  ASSERT_EQ(g.numHeadings(), 16);
+  const KinematicSlice whole(t.radius(), t.numHeadings());
+  // Headings 0 (x axis) and 2 (45 degrees) are fixed by a mirror; heading 1 (26.6) by none.
+  for (int key : {0, 1, 2}) {
+    for (Direction d : {Direction::kToGoal, Direction::kFromStart}) {
+      const auto slice = t.buildSlice(d, key, nullptr);
+      ASSERT_TRUE(slice);
+      EXPECT_EQ(slice->folded(), key != 1) << "heading " << key;
+      if (key == 1) {
+        EXPECT_EQ(slice->cells(), whole.cells());
+      } else {
+        // Half the disc plus the mirror line: the x axis for heading 0, y = x for heading 2.
+        const int R = t.radius();
+        std::size_t line = 0;
+        for (int k = -R; k <= R; ++k) line += key == 0 ? 1 : (2 * k * k <= R * R ? 1 : 0);
+        EXPECT_EQ(slice->cells(), (whole.cells() + line) / 2) << "heading " << key;
+      }
+    }
+  }
 }
 
 TEST(KinematicTable, SharedBetweenPlannersAndBuiltOnce) {

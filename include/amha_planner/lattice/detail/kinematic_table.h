@@ -28,6 +28,13 @@
 // Symmetries: the rotations and reflections of the square grid that map the action set onto
 // itself (same displacements, headings and costs) map cost-to-go onto cost-to-go, so one
 // table per orbit of goal headings is enough (3 for the usual 16 headings instead of 16).
+// A reflection that fixes the table's own goal heading (the x axis for heading 0, y = x for
+// 45 degrees) maps the table onto itself: such a table keeps one half of the disc (the mirror
+// line included) and reads the other half through the mirror, in half the memory. Its
+// Dijkstra runs on the quotient graph: a state across the mirror is its mirror image, and a
+// state on the line is one with its mirror image there (same cell, mirrored heading), whose
+// cost-to-go is the same because the reflection fixes the goal state; the line's twins get
+// their costs copied at the end.
 //
 // Tables are built on first use (a Dijkstra over about pi R^2 x headings states), shared by
 // every query and every planner with the same actions (KinematicTables::shared), and a build
@@ -59,27 +66,65 @@ struct KinematicMove {
   }
 };
 
-/// One table: K over the disc for one canonical goal (or start) heading.
+/// One table: K over the disc for one canonical goal (or start) heading; over half of it when
+/// a reflection fixes that heading (fold()).
 class KinematicSlice {
  public:
+  /// The whole disc.
   KinematicSlice(int radius, int num_headings);
+  /// Half of it: the offsets p with n . p >= 0, n the normal of reflection m's mirror line;
+  /// `perm` is m's action on headings (m must fix the slice's goal heading).
+  KinematicSlice(int radius, int num_headings, const std::array<int, 4>& m,
+                 const std::vector<int>& perm);
   int radius() const { return radius_; }
+  bool folded() const { return folded_; }
   /// K at offset (dx, dy) from the goal with heading h; the offset must lie in the disc.
-  std::uint16_t at(int dx, int dy, int h) const { return values_[index(dx, dy, h)]; }
+  std::uint16_t at(int dx, int dy, int h) const {
+    if (folded_ && n_[0] * dx + n_[1] * dy < 0) fold(&dx, &dy, &h);
+    return values_[index(dx, dy, h)];
+  }
   bool inDisc(int dx, int dy) const { return dx * dx + dy * dy <= radius_ * radius_; }
+  /// Where a stored offset's entry is (the offset must be in the disc and the kept half).
   std::size_t index(int dx, int dy, int h) const {
     const std::size_t row = static_cast<std::size_t>(dy + radius_);
-    return (row_start_[row] + static_cast<std::size_t>(dx + half_width_[row])) * headings_ + h;
+    return (row_start_[row] + static_cast<std::size_t>(dx - lo_[row])) * headings_ + h;
   }
+  /// Cells stored (the whole disc's, or about half).
   std::size_t cells() const { return row_start_.back(); }
   std::size_t bytes() const;
 
  private:
   friend class KinematicTables;
   friend struct KinematicTableTestAccess;
+  /// Maps a state of the dropped half onto its mirror image in the kept half.
+  void fold(int* dx, int* dy, int* h) const {
+    const int x = *dx, y = *dy;
+    *dx = m_[0] * x + m_[1] * y;
+    *dy = m_[2] * x + m_[3] * y;
+    *h = perm_[static_cast<std::size_t>(*h)];
+  }
+  /// The state of the quotient that stands for (dx, dy, h), whose cost-to-go is the same: its
+  /// mirror image if it lies in the dropped half; on the mirror line, of the state and its
+  /// mirror image (same cell, headings h and perm h) the one with the smaller heading.
+  void canonical(int* dx, int* dy, int* h) const {
+    const int side = n_[0] * *dx + n_[1] * *dy;
+    if (side < 0) {
+      fold(dx, dy, h);
+    } else if (side == 0 && perm_[static_cast<std::size_t>(*h)] < *h) {
+      *h = perm_[static_cast<std::size_t>(*h)];
+    }
+  }
+  /// True if (dx, dy) is stored: in the kept half (folded slices) or anywhere.
+  bool kept(int dx, int dy) const { return !folded_ || n_[0] * dx + n_[1] * dy >= 0; }
+  void layOut();
+
   int radius_, headings_;
+  bool folded_ = false;
+  std::array<int, 4> m_{1, 0, 0, 1};      // the mirror (folded slices)
+  std::array<int, 2> n_{0, 0};            //   its normal: kept offsets have n . p >= 0
+  std::vector<int> perm_;                 //   and its action on headings
   std::vector<std::uint32_t> row_start_;  // 2R + 2 entries: cells before each row (dy = -R ..)
-  std::vector<std::int32_t> half_width_;  // per row: dx runs over [-w, w]
+  std::vector<std::int32_t> lo_, hi_;     // per row: the stored dx run over [lo, hi]
   std::vector<std::uint16_t> values_;
 };
 
