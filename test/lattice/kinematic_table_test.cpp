@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <queue>
 #include <random>
 #include <tuple>
@@ -355,16 +356,22 @@ TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
   EXPECT_EQ(capped_broken, 0);
 }
 
-// A mutation: one entry raised by one unit. The exactness check above catches it.
-TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
+// An 8 x 8 empty map at 5 cm, 16 headings, turning radius 0.2 m, a table of radius_cells.
+std::unique_ptr<LatticeGraph> emptyLattice(int radius_cells) {
   LatticeConfig c;
   c.motion.turning_radius = 0.2;
-  c.heuristics.kinematic_radius = 0.05 * 10;
+  c.heuristics.kinematic_radius = 0.05 * radius_cells;
   auto map = std::make_shared<GridMap>();
   map->width = map->height = 8;
   map->resolution = 0.05;
   map->cost.assign(64, kFreeCost);
-  const LatticeGraph g(map, c);
+  return std::make_unique<LatticeGraph>(map, c);
+}
+
+// A mutation: one entry raised by one unit. The exactness check above catches it.
+TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
+  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(10);
+  const LatticeGraph& g = *lattice;
   const KinematicTables& t = *g.kinematicTables();
   auto slice = std::make_shared<KinematicSlice>(*t.buildSlice(Direction::kToGoal, 0, nullptr));
   const EmptyLatticeCosts exact =
@@ -385,14 +392,8 @@ TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
 // Folding: the tables of headings that a reflection fixes keep half the disc, the others all
 // of it; every entry stays exact (EveryEntryIsTheCappedExactCost... checks each heading).
 TEST(KinematicTable, TablesFixedByAReflectionKeepHalfTheDisc) {
-  LatticeConfig c;
-  c.motion.turning_radius = 0.2;
-  c.heuristics.kinematic_radius = 0.05 * 20;
-  auto map = std::make_shared<GridMap>();
-  map->width = map->height = 8;
-  map->resolution = 0.05;
-  map->cost.assign(64, kFreeCost);
-  const LatticeGraph g(map, c);
+  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(20);
+  const LatticeGraph& g = *lattice;
   const KinematicTables& t = *g.kinematicTables();
   ASSERT_EQ(g.numHeadings(), 16);
   const KinematicSlice whole(t.radius(), t.numHeadings());
