@@ -36,6 +36,17 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
         "amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
   }
   queue_ = std::make_unique<PlanQueue>(static_cast<std::size_t>(startup_.max_queued_requests));
+  // Threads start below (the map's, the spinners'); if a later step throws, they are stopped
+  // before the members they use are destroyed, as the destructor would (it does not run then).
+  try {
+    start();
+  } catch (...) {
+    shutDown();
+    throw;
+  }
+}
+
+void PlannerServer::start() {
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(tf_buffer_);
 
   // Publishers are thread-safe; they live on the private handle (~solutions, ~plan, ~footprints).
@@ -85,7 +96,9 @@ PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& p
                   << "', waiting for a map on " << map_tracker_->mapTopic());
 }
 
-PlannerServer::~PlannerServer() {
+PlannerServer::~PlannerServer() { shutDown(); }
+
+void PlannerServer::shutDown() noexcept {
   reconfigure_.reset();  // no reconfiguration while the rest goes
   shutting_down_ = true;
   {
@@ -93,9 +106,10 @@ PlannerServer::~PlannerServer() {
     for (const auto& flag : cancel_flags_) *flag = true;
   }
   // Stop taking callbacks; waiting service threads return as their cancelled jobs finish.
-  map_tracker_->stop();  // stops a build under way, drops one waiting
-  action_spinner_->stop();
-  service_spinner_->stop();
+  // Any of these may not exist yet when a throwing constructor calls this.
+  if (map_tracker_) map_tracker_->stop();  // stops a build under way, drops one waiting
+  if (action_spinner_) action_spinner_->stop();
+  if (service_spinner_) service_spinner_->stop();
   queue_.reset();
   action_server_.reset();
   map_tracker_.reset();

@@ -103,6 +103,13 @@ class PlannerServer {
                                                   const std::string& source, const ros::Time& time,
                                                   double timeout, const std::atomic<bool>* cancel);
 
+  /// The constructor's steps after the queue: the map tracker, services, action, spinners and
+  /// reconfiguration (their threads start here).
+  void start();
+  /// Stops every thread and callback, then drops what they use; the destructor, and a
+  /// constructor that throws after start() began. Safe on a partly started server.
+  void shutDown() noexcept;
+
   /// After a build or a request: returns freed heap to the system once much has been freed
   /// (a 4000 x 4000 map's planner frees tens of MB that glibc would otherwise keep).
   void releaseFreedMemory();
