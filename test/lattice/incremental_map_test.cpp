@@ -64,7 +64,9 @@ void expectSameGraph(const LatticeGraph& updated, const LatticeGraph& full,
     const std::vector<std::uint8_t>* u = updated.openedFree(k);
     const std::vector<std::uint8_t>* f = full.openedFree(k);
     ASSERT_EQ(u == nullptr, f == nullptr) << what << ": opening " << k;
-    if (u != nullptr) EXPECT_EQ(firstDifference(*u, *f, w), "") << what << ": opening " << k;
+    if (u != nullptr) {
+      EXPECT_EQ(firstDifference(*u, *f, w), "") << what << ": opening " << k;
+    }
   }
   EXPECT_EQ(updated.openingsEqual(), full.openingsEqual()) << what;
   EXPECT_EQ(updated.actions().size(), full.actions().size()) << what;
