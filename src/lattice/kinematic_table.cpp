@@ -74,7 +74,6 @@ void KinematicSlice::layOut() {
   const int radius = radius_;
   row_start_.assign(static_cast<std::size_t>(2 * radius + 2), 0);
   lo_.assign(static_cast<std::size_t>(2 * radius + 1), 0);
-  hi_.assign(static_cast<std::size_t>(2 * radius + 1), -1);
   for (int dy = -radius; dy <= radius; ++dy) {
     const std::size_t row = static_cast<std::size_t>(dy + radius);
     // The largest w with w^2 + dy^2 <= R^2 (integers, so no rounding doubt).
@@ -88,15 +87,14 @@ void KinematicSlice::layOut() {
       while (hi >= lo && !kept(hi, dy)) --hi;
     }
     lo_[row] = lo;
-    hi_[row] = hi;
     row_start_[row + 1] = row_start_[row] + static_cast<std::uint32_t>(hi >= lo ? hi - lo + 1 : 0);
   }
 }
 
 std::size_t KinematicSlice::bytes() const {
   return values_.capacity() * sizeof(std::uint16_t) +
-         row_start_.capacity() * sizeof(std::uint32_t) +
-         (lo_.capacity() + hi_.capacity()) * sizeof(std::int32_t) + perm_.capacity() * sizeof(int);
+         row_start_.capacity() * sizeof(std::uint32_t) + lo_.capacity() * sizeof(std::int32_t) +
+         perm_.capacity() * sizeof(int);
 }
 
 struct KinematicTables::Entry {
@@ -209,13 +207,10 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   const double slack = 1e-9 * limit + 1e-6;
   // The offset of each cell of the disc, to decode popped states.
   std::vector<std::array<std::int16_t, 2>> offset(cells);
-  for (int y = -R; y <= R; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y + R);
-    for (int x = slice->lo_[row]; x <= slice->hi_[row]; ++x) {
-      offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x),
-                                                                      static_cast<std::int16_t>(y)};
-    }
-  }
+  slice->forEachCell([&](int x, int y) {
+    offset[slice->index(x, y, 0) / static_cast<std::size_t>(nh)] = {static_cast<std::int16_t>(x),
+                                                                    static_cast<std::int16_t>(y)};
+  });
   Cost max_cost = 0;
   for (const KinematicMove& m : moves_) max_cost = std::max(max_cost, m.cost);
   // Dial's buckets hold a 4-byte state per entry (the radix heap 8): the queue is most of a
@@ -271,29 +266,24 @@ std::shared_ptr<const KinematicSlice> KinematicTables::buildSlice(Direction dire
   if (!complete) return nullptr;
   // A state on the mirror line is its mirror image's twin (canonical()): copy its cost there.
   if (slice->folded()) {
-    for (int y = -R; y <= R; ++y) {
-      const std::size_t row = static_cast<std::size_t>(y + R);
-      for (int x = slice->lo_[row]; x <= slice->hi_[row]; ++x) {
-        if (slice->n_[0] * x + slice->n_[1] * y != 0) continue;
-        std::uint16_t* v = dist + slice->index(x, y, 0);
-        for (int k = 0; k < nh; ++k)
-          v[k] = v[slice->perm_[static_cast<std::size_t>(k)] < k
-                       ? slice->perm_[static_cast<std::size_t>(k)]
-                       : k];
+    slice->forEachCell([&](int x, int y) {
+      if (slice->n_[0] * x + slice->n_[1] * y != 0) return;
+      std::uint16_t* v = dist + slice->index(x, y, 0);
+      for (int k = 0; k < nh; ++k) {
+        int cx = x, cy = y, ch = k;
+        slice->canonical(&cx, &cy, &ch);  // on the line: the same cell
+        v[k] = v[ch];
       }
-    }
+    });
   }
   // The cap: K = min(T, floor(G)) with G = s (2R - |p|).
-  for (int y = -R; y <= R; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y + R);
-    for (int x = slice->lo_[row]; x <= slice->hi_[row]; ++x) {
-      const double g =
-          s_ * (2.0 * R - std::sqrt(static_cast<double>(x) * x + static_cast<double>(y) * y));
-      const std::uint16_t cap = static_cast<std::uint16_t>(std::floor(g));
-      std::uint16_t* v = dist + slice->index(x, y, 0);
-      for (int k = 0; k < nh; ++k) v[k] = std::min(v[k], cap);
-    }
-  }
+  slice->forEachCell([&](int x, int y) {
+    const double g =
+        s_ * (2.0 * R - std::sqrt(static_cast<double>(x) * x + static_cast<double>(y) * y));
+    const std::uint16_t cap = static_cast<std::uint16_t>(std::floor(g));
+    std::uint16_t* v = dist + slice->index(x, y, 0);
+    for (int k = 0; k < nh; ++k) v[k] = std::min(v[k], cap);
+  });
   return slice;
 }
 

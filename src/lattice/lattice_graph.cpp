@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amha_planner/lattice/detail/grid_moves.h"
+#include "primitive_geometry.h"
 
 namespace amha {
 namespace lattice {
@@ -160,12 +161,7 @@ void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
   if (!footprint_.polygon.empty()) {
     const double r = footprint_.circumscribed_radius / res + 1.5;
     for (const MotionPrimitive& p : primitives_.primitives) {
-      double length = 0.0;
-      for (std::size_t k = 1; k < p.poses.size(); ++k) {
-        length +=
-            std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y) / res;
-      }
-      swept += M_PI * r * r + 2.0 * r * length;
+      swept += M_PI * r * r + 2.0 * r * detail::polylineLength(p.poses) / res;
     }
   }
   if (swept > static_cast<double>(kMaxSweptCells)) {
@@ -249,10 +245,7 @@ void LatticeGraph::buildActions(const StopCondition* stop) {
       a.end_heading = p.end_heading;
       a.primitive = static_cast<int>(i);
       a.end_offset = static_cast<std::int64_t>(a.dy) * map_->width + a.dx;
-      double length = 0.0;
-      for (std::size_t k = 1; k < p.poses.size(); ++k) {
-        length += std::hypot(p.poses[k].x - p.poses[k - 1].x, p.poses[k].y - p.poses[k - 1].y);
-      }
+      const double length = detail::polylineLength(p.poses);
       const double turn = angleDistance(primitives_.heading_angles[p.start_heading],
                                         primitives_.heading_angles[p.end_heading]);
       const double turn_as_distance = omega > 0.0 ? config_.cost.nominal_speed * turn / omega : 0.0;
@@ -376,10 +369,10 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   if (!openings) return;
   // Opening = dilation of the erosion: cells within r of a cell that is more than r from every
   // obstacle. Both steps are exact Euclidean distance transforms.
+  // One mask for a round robot's one radius, none for a point: the heuristics' grids already
+  // keep to cells below lethal (openedFree).
+  openings_shared_ = radii[1] == radii[0];
   for (int k = 0; k < 2; ++k) {
-    // One mask for a round robot's one radius, none for a point: the heuristics' grids
-    // already keep to cells below lethal (openedFree).
-    openings_shared_ = radii[1] == radii[0];
     if (k == 1 && openings_shared_) break;
     const double r = radii[k];
     std::vector<std::uint8_t>& o = opened_[k];

@@ -455,7 +455,6 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     throw std::invalid_argument("the start escape penalty must be finite and >= 1");
   }
   const bool any_heading = goal_options.any_heading;
-  const auto call_start = std::chrono::steady_clock::now();
   // The goal choice and the grids honour the cancel flag and the time budget too (seconds on
   // a big map).
   const StopCondition stop = stopFor(limits);

@@ -19,7 +19,6 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph,
                                                         LatticeConfig::Inadmissible::kKinematic),
       num_inadmissible_(std::clamp(num_inadmissible, 0, 3)),
       backward_(backward),
-      width_(graph.width()),
       headings_(graph.numHeadings()),
       keys_(graph.width(), graph.height(), graph.numHeadings(), kVirtualHeading) {
   if (graph.numHeadings() > 0xFFFF)

@@ -12,21 +12,12 @@
 
 #include "amha_planner/lattice/detail/dubins_path.h"
 #include "amha_planner/lattice/detail/footprint.h"
+#include "primitive_geometry.h"
 
 namespace amha {
 namespace lattice {
 
-namespace {
-
-double polylineLength(const std::vector<Pose2D>& poses) {
-  double length = 0.0;
-  for (std::size_t k = 1; k < poses.size(); ++k) {
-    length += std::hypot(poses[k].x - poses[k - 1].x, poses[k].y - poses[k - 1].y);
-  }
-  return length;
-}
-
-}  // namespace
+using detail::polylineLength;
 
 MotionKind motionKind(const MotionPrimitive& p) {
   if (polylineLength(p.poses) < 1e-9) return MotionKind::kInPlace;

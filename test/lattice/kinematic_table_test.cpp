@@ -190,8 +190,9 @@ TEST(KinematicTable, EveryEntryIsTheCappedExactCostForEveryHeadingAndDirection) 
     EXPECT_GT(capped, 0) << set.name << ": the cap never applied at 9 cells out";
     EXPECT_GT(exact, 0) << set.name << ": no exact entry at 9 cells out";
     // Symmetric sets need fewer slices than headings (16 headings: 3 orbits).
-    if (std::string(set.name).rfind("generated", 0) == 0)
+    if (std::string(set.name).rfind("generated", 0) == 0) {
       EXPECT_EQ(t.numSymmetries(), 8) << set.name;
+    }
   }
 }
 
@@ -312,19 +313,32 @@ TEST(KinematicTable, AnchorConsistentAndAdmissibleAcrossTheDiscEdge) {
   EXPECT_GT(crossing, 1000) << "too few edges cross the disc's edge to test it";
 }
 
-// The edge case the cap exists for: a state just inside the disc, facing away from the goal, has
-// a large T; one move takes it outside, where the table says nothing. "T inside, Euclidean
-// outside" is then inconsistent on that edge; the capped table is not.
-TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
+// The small tables' primitives: 16 headings, turning radius 0.2 m at 5 cm, a disc of
+// radius_cells.
+LatticeConfig tableConfig(int radius_cells) {
   LatticeConfig c;
   c.motion.turning_radius = 0.2;
-  c.motion.turn_in_place = false;
-  c.heuristics.kinematic_radius = 0.05 * 20;
+  c.heuristics.kinematic_radius = 0.05 * radius_cells;
+  return c;
+}
+
+// The lattice of `c` on an empty 8 x 8 map at 5 cm (the tables do not depend on the map).
+std::unique_ptr<LatticeGraph> emptyLattice(const LatticeConfig& c) {
   auto map = std::make_shared<GridMap>();
   map->width = map->height = 8;
   map->resolution = 0.05;
   map->cost.assign(64, kFreeCost);
-  const LatticeGraph g(map, c);
+  return std::make_unique<LatticeGraph>(map, c);
+}
+
+// The edge case the cap exists for: a state just inside the disc, facing away from the goal, has
+// a large T; one move takes it outside, where the table says nothing. "T inside, Euclidean
+// outside" is then inconsistent on that edge; the capped table is not.
+TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
+  LatticeConfig c = tableConfig(20);
+  c.motion.turn_in_place = false;
+  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(c);
+  const LatticeGraph& g = *lattice;
   const KinematicTables& t = *g.kinematicTables();
   const int R = t.radius();
   const EmptyLatticeCosts exact =
@@ -356,21 +370,9 @@ TEST(KinematicTable, TheCapKeepsTheDiscEdgeConsistentWhereTheNaiveTableIsNot) {
   EXPECT_EQ(capped_broken, 0);
 }
 
-// An 8 x 8 empty map at 5 cm, 16 headings, turning radius 0.2 m, a table of radius_cells.
-std::unique_ptr<LatticeGraph> emptyLattice(int radius_cells) {
-  LatticeConfig c;
-  c.motion.turning_radius = 0.2;
-  c.heuristics.kinematic_radius = 0.05 * radius_cells;
-  auto map = std::make_shared<GridMap>();
-  map->width = map->height = 8;
-  map->resolution = 0.05;
-  map->cost.assign(64, kFreeCost);
-  return std::make_unique<LatticeGraph>(map, c);
-}
-
 // A mutation: one entry raised by one unit. The exactness check above catches it.
 TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
-  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(10);
+  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(tableConfig(10));
   const LatticeGraph& g = *lattice;
   const KinematicTables& t = *g.kinematicTables();
   auto slice = std::make_shared<KinematicSlice>(*t.buildSlice(Direction::kToGoal, 0, nullptr));
@@ -392,7 +394,7 @@ TEST(KinematicTable, AnEntryRaisedByOneIsCaught) {
 // Folding: the tables of headings that a reflection fixes keep half the disc, the others all
 // of it; every entry stays exact (EveryEntryIsTheCappedExactCost... checks each heading).
 TEST(KinematicTable, TablesFixedByAReflectionKeepHalfTheDisc) {
-  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(20);
+  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(tableConfig(20));
   const LatticeGraph& g = *lattice;
   const KinematicTables& t = *g.kinematicTables();
   ASSERT_EQ(g.numHeadings(), 16);
@@ -438,15 +440,11 @@ TEST(KinematicTable, SharedBetweenPlannersAndBuiltOnce) {
 }
 
 TEST(KinematicTable, ABuildIsCancellableAndRetried) {
-  LatticeConfig c;
-  c.motion.turning_radius = 0.2;
+  LatticeConfig c = tableConfig(20);
   c.heuristics.kinematic_radius = 3.0;  // 60 cells: long enough to stop in the middle
   c.cost.time_to_turn_45 = 0.7;         // tables of their own (other costs than the other tests')
-  auto map = std::make_shared<GridMap>();
-  map->width = map->height = 8;
-  map->resolution = 0.05;
-  map->cost.assign(64, kFreeCost);
-  const LatticeGraph g(map, c);
+  const std::unique_ptr<LatticeGraph> lattice = emptyLattice(c);
+  const LatticeGraph& g = *lattice;
   std::atomic<bool> cancel{true};
   const StopCondition stop(&cancel, std::numeric_limits<double>::infinity());
   EXPECT_FALSE(g.kinematicTables()->lookup(Direction::kToGoal, 1, &stop).valid());

@@ -80,7 +80,7 @@ class KinematicSlice {
   bool folded() const { return folded_; }
   /// K at offset (dx, dy) from the goal with heading h; the offset must lie in the disc.
   std::uint16_t at(int dx, int dy, int h) const {
-    if (folded_ && n_[0] * dx + n_[1] * dy < 0) fold(&dx, &dy, &h);
+    if (!kept(dx, dy)) fold(&dx, &dy, &h);
     return values_[index(dx, dy, h)];
   }
   bool inDisc(int dx, int dy) const { return dx * dx + dy * dy <= radius_ * radius_; }
@@ -116,6 +116,15 @@ class KinematicSlice {
   }
   /// True if (dx, dy) is stored: in the kept half (folded slices) or anywhere.
   bool kept(int dx, int dy) const { return !folded_ || n_[0] * dx + n_[1] * dy >= 0; }
+  /// f(dx, dy) for every stored offset, in storage order.
+  template <class F>
+  void forEachCell(F&& f) const {
+    for (int dy = -radius_; dy <= radius_; ++dy) {
+      const std::size_t row = static_cast<std::size_t>(dy + radius_);
+      const int end = lo_[row] + static_cast<int>(row_start_[row + 1] - row_start_[row]);
+      for (int dx = lo_[row]; dx < end; ++dx) f(dx, dy);
+    }
+  }
   void layOut();
 
   int radius_, headings_;
@@ -124,7 +133,7 @@ class KinematicSlice {
   std::array<int, 2> n_{0, 0};            //   its normal: kept offsets have n . p >= 0
   std::vector<int> perm_;                 //   and its action on headings
   std::vector<std::uint32_t> row_start_;  // 2R + 2 entries: cells before each row (dy = -R ..)
-  std::vector<std::int32_t> lo_, hi_;     // per row: the stored dx run over [lo, hi]
+  std::vector<std::int32_t> lo_;          // per row: the first stored dx (the run is contiguous)
   std::vector<std::uint16_t> values_;
 };
 

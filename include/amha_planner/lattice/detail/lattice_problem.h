@@ -103,7 +103,7 @@ class LatticeProblem final : public SearchProblem {
   bool kinematic_inadmissible_ = false;            // the inadmissible heuristics take the table too
   int num_inadmissible_;
   bool backward_ = false;
-  int width_, headings_;
+  int headings_;
   int tiles_x_;
   std::size_t page_entries_;
   std::vector<std::uint32_t*> pages_;                    // per 8 x 8 tile, null until touched
