@@ -8,6 +8,7 @@
 #include <limits>
 #include <queue>
 #include <thread>
+#include <utility>
 
 #include "amha_planner/lattice/lattice_graph.h"
 #include "dial_queue.h"
@@ -16,6 +17,80 @@
 
 namespace amha {
 namespace lattice {
+
+namespace {
+
+// Distances are stored atomically: a search may read a grid that a background thread still
+// completes (GridProgress). Relaxed: the order comes from GridProgress::settled.
+inline void storeDistance(std::uint32_t* dist, std::size_t i, std::uint32_t v) {
+  __atomic_store_n(dist + i, v, __ATOMIC_RELAXED);
+}
+
+/// Spins a little, then yields, then sleeps: a waiter for a background thread on a busy machine
+/// must not take the core it needs.
+void pause(unsigned& spins) {
+  if (++spins < 64) return;
+  if (spins < 1024) {
+    std::this_thread::yield();
+  } else {
+    std::this_thread::sleep_for(std::chrono::microseconds(50));
+  }
+}
+
+}  // namespace
+
+std::uint32_t GridProgress::read(const std::uint32_t* dist, std::size_t i) const {
+  for (unsigned spins = 0;;) {
+    const std::uint32_t p = settled.load(std::memory_order_acquire);
+    const std::uint32_t v = __atomic_load_n(dist + i, __ATOMIC_RELAXED);
+    if (v <= p) return v;
+    if (abandoned.load(std::memory_order_acquire)) return p;
+    pause(spins);
+  }
+}
+
+bool GridProgress::waitComplete() const {
+  for (unsigned spins = 0;;) {
+    if (settled.load(std::memory_order_acquire) == kUnreachable) return true;
+    if (abandoned.load(std::memory_order_acquire)) return false;
+    pause(spins);
+  }
+}
+
+/// One compute() or repair(): its tasks (-1: the block abstraction; k: grid kind k), taken in
+/// order by the threads that work on it. Shared with the background threads, which may outlive
+/// the call.
+struct HeuristicGridBuilder::Job {
+  int gx = 0, gy = 0, gh = 0;
+  bool backward = false;
+  std::vector<int> tasks;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stopped{false};  // a task was stopped: the job's result is void
+  std::atomic<bool> cancel{false};   // stops the background threads
+  StopCondition background_stop{&cancel, std::numeric_limits<double>::infinity()};
+  std::shared_ptr<const GoalHeuristics> old;       // repair() only
+  const std::vector<CellRect>* changed = nullptr;  // repair() only
+  const DistanceGrid* base[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
+  std::shared_ptr<DistanceGrid> result[kNumGridKinds];
+  GoalHeuristics* out = nullptr;  // the abstraction's task writes it (never a background one)
+};
+
+HeuristicGridBuilder::~HeuristicGridBuilder() { reapBackground(true); }
+
+void HeuristicGridBuilder::reapBackground(bool all) const {
+  std::lock_guard<std::mutex> lock(background_mutex_);
+  if (all) {
+    for (Background& b : background_) b.job->cancel.store(true, std::memory_order_relaxed);
+  }
+  for (auto it = background_.begin(); it != background_.end();) {
+    if (all || it->done.load(std::memory_order_acquire)) {
+      it->thread.join();
+      it = background_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+}
 
 std::size_t GoalHeuristics::bytes() const {
   std::size_t b = sizeof(*this) + coarse.capacity() * sizeof(std::uint32_t);
@@ -164,11 +239,13 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
 
 template <class Queue>
 bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                                    const StopCondition* stop) const {
+                                    const StopCondition* stop,
+                                    std::atomic<std::uint32_t>* settled) const {
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [d, i] = queue.pop();
+    if (settled != nullptr && d > 0) settled->store(d - 1, std::memory_order_release);
     if (d != dist[i]) continue;
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     for (std::size_t m = 0; m < nm; ++m) {
@@ -180,7 +257,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
       const std::uint32_t v = static_cast<std::uint32_t>(
           std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
       if (v < dist[j]) {
-        dist[j] = v;
+        storeDistance(dist, j, v);
         queue.push(v, static_cast<std::uint32_t>(j));
       }
     }
@@ -197,7 +274,8 @@ constexpr std::size_t kPrefetchAhead = 4;
 
 template <bool kKnights, class Queue>
 bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                                            const StopCondition* stop) const {
+                                            const StopCondition* stop,
+                                            std::atomic<std::uint32_t>* settled) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -224,6 +302,7 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       __builtin_prefetch(level + a - pw);
       __builtin_prefetch(level + a + pw);
     }
+    if (settled != nullptr && d > 0) settled->store(d - 1, std::memory_order_release);
     if (d != dist[i]) continue;
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     const unsigned c0 = level[i];
@@ -233,7 +312,7 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       const std::uint32_t nd = static_cast<std::uint32_t>(
           std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + s[c], kUnreachable - 1));
       if (nd < dist[j]) {
-        dist[j] = nd;
+        storeDistance(dist, j, nd);
         queue.push(nd, static_cast<std::uint32_t>(j));
       }
     };
@@ -278,35 +357,49 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
 }
 
 bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid,
-                               const StopCondition* stop) const {
-  const int pw = width_ + 4;
-  const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
-  grid.width = width_;
-  grid.height = height_;
-  grid.max_distance = 0;
-  if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
-  std::uint32_t* dist = grid.dist.data();
-  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
-  if (kind.level[goal] == 255) return true;
-  const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
-  // Every finite distance is popped, the largest last.
-  auto search = [&](auto& queue) {
-    queue.push(0, goal);
-    const bool complete = eight     ? dijkstraUnrolled<false>(kind, dist, queue, stop)
-                          : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop)
-                                    : dijkstra(kind, dist, queue, stop);
-    grid.max_distance = queue.lastPopped();
-    return complete;
-  };
-  // Dial's queue needs every key within max_step of the current one, so it is used only when
-  // no distance can reach the saturation value.
-  dist[goal] = 0;
-  if (kind.max_step < 4096 && !canSaturate(kind)) {
-    detail::DialQueue q(kind.max_step);
+                               const StopCondition* stop, GridProgress* progress) const {
+  auto dijkstraFromGoal = [&]() {
+    const int pw = width_ + 4;
+    const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
+    grid.width = width_;
+    grid.height = height_;
+    grid.max_distance = 0;
+    if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
+    std::uint32_t* dist = grid.dist.data();
+    const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
+    const bool passable = kind.level[goal] != 255;
+    if (passable) dist[goal] = 0;
+    if (progress != nullptr) progress->filled.store(true, std::memory_order_release);
+    if (!passable) return true;
+    std::atomic<std::uint32_t>* settled = progress != nullptr ? &progress->settled : nullptr;
+    const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
+    // Every finite distance is popped, the largest last.
+    auto search = [&](auto& queue) {
+      queue.push(0, goal);
+      const bool complete = eight     ? dijkstraUnrolled<false>(kind, dist, queue, stop, settled)
+                            : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop, settled)
+                                      : dijkstra(kind, dist, queue, stop, settled);
+      grid.max_distance = queue.lastPopped();
+      return complete;
+    };
+    // Dial's queue needs every key within max_step of the current one, so it is used only when
+    // no distance can reach the saturation value.
+    if (kind.max_step < 4096 && !canSaturate(kind)) {
+      detail::DialQueue q(kind.max_step);
+      return search(q);
+    }
+    detail::RadixHeap q;
     return search(q);
+  };
+  const bool complete = dijkstraFromGoal();
+  if (progress != nullptr) {
+    if (complete) {
+      progress->settled.store(kUnreachable, std::memory_order_release);
+    } else {
+      progress->abandoned.store(true, std::memory_order_release);
+    }
   }
-  detail::RadixHeap q;
-  return search(q);
+  return complete;
 }
 
 bool HeuristicGridBuilder::fill(std::vector<std::uint32_t>& grid, std::size_t count,
@@ -439,8 +532,9 @@ DistanceGrid HeuristicGridBuilder::computeOne(GridKind kind, int gx, int gy) con
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::compute(
     int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward,
-    const StopCondition* stop) const {
-  return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, nullptr, nullptr);
+    const StopCondition* stop, const std::pair<int, int>* search_start) const {
+  return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, nullptr, nullptr,
+                         search_start);
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(
@@ -448,21 +542,54 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(
     bool inadmissible, unsigned threads, bool backward, const StopCondition* stop) const {
   const int gx = old->goal_x, gy = old->goal_y, gh = old->goal_heading;
   return computeOrRepair(gx, gy, gh, inadmissible, threads, backward, stop, std::move(old),
-                         &changed);
+                         &changed, nullptr);
+}
+
+void HeuristicGridBuilder::work(Job& job, const StopCondition* stop) const {
+  for (std::size_t t; !job.stopped.load(std::memory_order_relaxed) &&
+                      (t = job.next.fetch_add(1)) < job.tasks.size();) {
+    const int k = job.tasks[t];
+    bool complete;
+    if (k < 0) {
+      const std::shared_ptr<const GoalHeuristics>& old = job.old;
+      job.out->coarse = old && !old->coarse.empty()
+                            ? coarse_->repairDistances(old->coarse, *job.changed, job.gx, job.gy,
+                                                       job.gh, job.backward, stop)
+                            : coarse_->distances(job.gx, job.gy, job.gh, job.backward, stop);
+      job.out->coarse_lattice = coarse_.get();
+      complete = !job.out->coarse.empty();
+    } else if (job.base[k] != nullptr) {
+      complete =
+          repairGrid(kinds_[k], job.gx, job.gy, *job.base[k], *job.changed, *job.result[k], stop);
+    } else {
+      complete =
+          run(kinds_[k], job.gx, job.gy, *job.result[k], stop, job.result[k]->progress.get());
+    }
+    if (!complete) job.stopped.store(true, std::memory_order_relaxed);
+  }
 }
 
 std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
     int gx, int gy, int gh, bool inadmissible, unsigned threads, bool backward,
     const StopCondition* stop, std::shared_ptr<const GoalHeuristics> old,
-    const std::vector<CellRect>* changed) const {
+    const std::vector<CellRect>* changed, const std::pair<int, int>* search_start) const {
   const auto t0 = std::chrono::steady_clock::now();
-  auto out = std::make_shared<GoalHeuristics>();
-  out->goal_x = gx;
-  out->goal_y = gy;
-  out->goal_heading = gh;
+  reapBackground(false);
+  auto job = std::make_shared<Job>();
+  job->gx = gx;
+  job->gy = gy;
+  job->gh = gh;
+  job->backward = backward;
+  job->changed = changed;
+  auto heuristics = std::make_shared<GoalHeuristics>();
+  GoalHeuristics& out = *heuristics;
+  job->out = heuristics.get();
+  out.goal_x = gx;
+  out.goal_y = gy;
+  out.goal_heading = gh;
   bool wanted[kNumGridKinds];
   for (int k = 0; k < kNumGridKinds; ++k) wanted[k] = needed_[k] && (k == 0 || inadmissible);
-  std::vector<int> tasks;
+  std::vector<int>& tasks = job->tasks;
   if (coarse_) tasks.push_back(-1);  // the abstraction: usually the longest, so first
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (wanted[k] && alias_[k] == k) tasks.push_back(k);
@@ -473,10 +600,12 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
       tasks.push_back(alias_[k]);
   }
   // old's grid of kind k can be repaired into kind k's if it holds kind k's own distances
-  // (another kind's, rescaled, cannot), for the same map size (repair() passes old's goal).
-  const DistanceGrid* base[kNumGridKinds] = {nullptr, nullptr, nullptr, nullptr};
+  // (another kind's, rescaled, cannot), for the same map size (repair() passes old's goal), and
+  // is complete (a grid whose background thread was stopped is not).
+  const DistanceGrid** base = job->base;
   for (int k : tasks) {
     const DistanceGrid* g = k >= 0 && old ? old->grids[k].get() : nullptr;
+    if (g != nullptr && g->progress && !g->progress->waitComplete()) g = nullptr;
     if (g != nullptr && old->scale[k] == 1.0 && g->width == width_ && g->height == height_)
       base[k] = g;
   }
@@ -484,11 +613,10 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
   // place: copying a big grid costs more than the repair itself. The grids in GoalHeuristics
   // are const only to their readers; this builder made them.
   const bool owned = old && old.use_count() == 1;
-  std::shared_ptr<DistanceGrid> result[kNumGridKinds];
+  std::shared_ptr<DistanceGrid>* result = job->result;
   for (int k : tasks) {
     if (k < 0) continue;
-    const bool alone =
-        base[k] != nullptr && std::count(std::begin(base), std::end(base), base[k]) == 1;
+    const bool alone = base[k] != nullptr && std::count(base, base + kNumGridKinds, base[k]) == 1;
     if (owned && alone) {
       for (int j = 0; j < kNumGridKinds; ++j) {
         if (old->grids[j].get() == base[k])
@@ -498,44 +626,78 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
       result[k] = std::make_shared<DistanceGrid>();
     }
   }
-  auto grid = [&](int k) {
-    if (base[k] != nullptr)
-      return repairGrid(kinds_[k], gx, gy, *base[k], *changed, *result[k], stop);
-    return run(kinds_[k], gx, gy, *result[k], stop);
-  };
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> stopped{false};
-  auto worker = [&]() {
-    for (std::size_t t; !stopped && (t = next.fetch_add(1)) < tasks.size();) {
-      if (tasks[t] < 0) {
-        out->coarse =
-            old && !old->coarse.empty()
-                ? coarse_->repairDistances(old->coarse, *changed, gx, gy, gh, backward, stop)
-                : coarse_->distances(gx, gy, gh, backward, stop);
-        out->coarse_lattice = coarse_.get();
-        if (out->coarse.empty()) stopped = true;
-      } else if (!grid(tasks[t])) {
-        stopped = true;
-      }
-    }
-  };
+  job->old = std::move(old);
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   // Starting threads costs more than a small map's grids.
   if (static_cast<std::size_t>(width_) * height_ < 20000) threads = 1;
-  const std::size_t n = std::min<std::size_t>(threads, tasks.size());
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  if (stopped) return nullptr;
+  const std::size_t grid_tasks = tasks.size() - (coarse_ ? 1 : 0);
+  // The search may start early if other threads can complete the grids meanwhile.
+  const bool early = search_start != nullptr && !job->old && threads >= 2 && grid_tasks > 0;
+  if (early) {
+    for (int k : tasks) {
+      if (k >= 0) result[k]->progress = std::make_shared<GridProgress>();
+    }
+    // The background threads take the grids; this thread the abstraction, then helps.
+    const std::size_t helpers = std::min<std::size_t>(threads - 1, grid_tasks);
+    if (coarse_) job->next.store(1);
+    {
+      std::lock_guard<std::mutex> lock(background_mutex_);
+      for (std::size_t t = 0; t < helpers; ++t) {
+        background_.emplace_back();
+        Background& b = background_.back();
+        b.job = job;
+        b.thread = std::thread([this, job, &b] {
+          work(*job, &job->background_stop);
+          b.done.store(true, std::memory_order_release);
+        });
+      }
+    }
+    if (coarse_) {
+      out.coarse = coarse_->distances(gx, gy, gh, backward, stop);
+      out.coarse_lattice = coarse_.get();
+      if (out.coarse.empty()) job->stopped.store(true);
+    }
+    // More grids than helpers: this thread takes some too (those it takes it completes).
+    if (grid_tasks > helpers) work(*job, stop);
+    // Until the search's first cell is final in every grid (or the call is stopped).
+    for (unsigned spins = 0; !job->stopped.load();) {
+      bool ready = true;
+      for (int k : tasks) {
+        if (k < 0) continue;
+        const GridProgress& p = *result[k]->progress;
+        if (p.abandoned.load(std::memory_order_acquire)) {
+          job->stopped.store(true);
+          break;
+        }
+        const std::size_t i = static_cast<std::size_t>(search_start->second + 2) * (width_ + 4) +
+                              (search_start->first + 2);
+        if (!p.filled.load(std::memory_order_acquire) || !p.settledAt(result[k]->dist.data(), i))
+          ready = false;
+      }
+      if (ready) break;
+      if (stop != nullptr && stop->requested()) job->stopped.store(true);
+      pause(spins);
+    }
+    if (job->stopped.load()) {
+      job->cancel.store(true);
+      return nullptr;
+    }
+  } else {
+    const std::size_t n = std::min<std::size_t>(threads, tasks.size());
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < n; ++t) pool.emplace_back([&] { work(*job, stop); });
+    work(*job, stop);
+    for (auto& th : pool) th.join();
+    if (job->stopped.load()) return nullptr;
+  }
   for (int k = 0; k < kNumGridKinds; ++k) {
     if (wanted[k]) {
-      out->grids[k] = result[alias_[k]];
-      out->scale[k] = scale_[k];
+      out.grids[k] = result[alias_[k]];
+      out.scale[k] = scale_[k];
     }
   }
-  out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return out;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return heuristics;
 }
 
 }  // namespace lattice

@@ -85,9 +85,11 @@ struct LatticePlanner::Impl {
   /// at the same time). Null when `stop` (cancel flag, deadline) stopped this call first; a
   /// computation stopped that way is not cached, and threads that were waiting for it compute
   /// the grids themselves. `seconds` receives the time spent here computing or waiting for them.
+  /// Computed here, they are handed out once search_start's distances are final (compute()).
   std::shared_ptr<const GoalHeuristics> heuristicsFor(int x, int y, int heading, bool inadmissible,
                                                       bool backward, const StopCondition& stop,
-                                                      double* seconds, HeuristicSource* source) {
+                                                      double* seconds, HeuristicSource* source,
+                                                      std::pair<int, int> search_start) {
     const GoalKey key{x, y, heading, inadmissible, backward};
     const auto t0 = std::chrono::steady_clock::now();
     auto since = [&] {
@@ -150,7 +152,8 @@ struct LatticePlanner::Impl {
         const bool repairing = stale_grids != nullptr;
         auto grids = repairing ? builder->repair(std::move(stale_grids), stale_changed,
                                                  inadmissible, 0, backward, &stop)
-                               : builder->compute(x, y, heading, inadmissible, 0, backward, &stop);
+                               : builder->compute(x, y, heading, inadmissible, 0, backward, &stop,
+                                                  &search_start);
         if (!grids) forget();
         promise.set_value(grids);
         *seconds = since();
@@ -506,8 +509,11 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     result.search.status = SearchStatus::kMemoryLimit;
     return result;
   }
-  auto grids = impl_->heuristicsFor(to.x, to.y, table_heading, uses_inadmissible, backward, stop,
-                                    &result.heuristic_seconds, &result.heuristic_source);
+  // The search may start once its first cell's distances are final (the rest of the grids are
+  // completed alongside it).
+  auto grids =
+      impl_->heuristicsFor(to.x, to.y, table_heading, uses_inadmissible, backward, stop,
+                           &result.heuristic_seconds, &result.heuristic_source, {from.x, from.y});
   if (!grids) {
     result.search.status = stoppedStatus(stop);
     return result;  // no search ran: search.elapsed_s stays 0, heuristic_seconds has the time

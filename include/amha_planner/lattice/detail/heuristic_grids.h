@@ -5,13 +5,19 @@
 //  - the inadmissible ones (the paper's): an 8-connected Dijkstra for a point robot, and the
 //    same on free space opened by the inscribed and by the circumscribed radius.
 // Costs are integers, so a radix heap (monotone integer queue) replaces the binary heap; the
-// grids are independent and computed in parallel threads.
+// grids are independent and computed in parallel threads. Given the cell where the search
+// begins, compute() returns once that cell's distance is final and leaves the rest of each grid
+// to a background thread (GridProgress): the search starts while the grid is completed.
 #pragma once
 
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <list>
 #include <memory>
+#include <mutex>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "amha_planner/lattice/detail/coarse_lattice.h"
@@ -31,6 +37,31 @@ constexpr std::uint32_t kUnreachable = 0xFFFFFFFFu;
 /// keeps the rounding loss small); heuristic value = grid value / kGridFraction.
 constexpr std::uint32_t kGridFraction = 4;
 
+/// How far a grid that a background thread still completes is final. The Dijkstra stores
+/// distances atomically and, on popping key d, publishes settled = d - 1: every key up to d - 1
+/// has been popped and its moves relaxed, so every cell whose distance is at most d - 1 holds
+/// it (its predecessor on a shortest path had a key no larger, popped before). A reader loads
+/// `settled` (acquire), then the cell: a value v <= settled is final (a tentative value is never
+/// below the final one, and a final one <= settled was stored before the publication); a larger
+/// value is waited for.
+struct GridProgress {
+  std::atomic<bool> filled{false};        ///< the grid's cells exist (release: readers may look)
+  std::atomic<std::uint32_t> settled{0};  ///< kUnreachable once the grid is complete
+  /// Stopped before completion (the builder was destroyed first): cells past `settled` are not
+  /// final, and read() returns `settled` for them (a lower bound of their distance).
+  std::atomic<bool> abandoned{false};
+
+  /// Whether cell i's distance is final; needs `filled`.
+  bool settledAt(const std::uint32_t* dist, std::size_t i) const {
+    const std::uint32_t p = settled.load(std::memory_order_acquire);
+    return __atomic_load_n(dist + i, __ATOMIC_RELAXED) <= p;
+  }
+  /// Cell i's final distance, waiting for it (the background thread makes progress on its own).
+  std::uint32_t read(const std::uint32_t* dist, std::size_t i) const;
+  /// Waits until the grid is complete; false if it was abandoned.
+  bool waitComplete() const;
+};
+
 /// One Dijkstra grid, stored with a 2-cell blocked border (padded width width + 4).
 struct DistanceGrid {
   int width = 0, height = 0;
@@ -38,8 +69,12 @@ struct DistanceGrid {
   /// No finite distance exceeds this (the largest one after a full computation; kUnreachable - 1
   /// if a distance saturated).
   std::uint32_t max_distance = 0;
+  /// Set when a background thread completes the grid (then read cells through at() only); null
+  /// for a grid complete when it was handed out.
+  std::shared_ptr<GridProgress> progress;
   std::uint32_t at(int x, int y) const {
-    return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)];
+    const std::size_t i = static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2);
+    return progress ? progress->read(dist.data(), i) : dist[i];
   }
 };
 
@@ -76,10 +111,14 @@ class HeuristicGridBuilder {
   /// configuration asks for, in parallel (up to `threads`, 0 = all hardware threads).
   /// `backward`: the tables are for a backward search, i.e. distances from (x, y, heading).
   /// Returns null if `stop` asked to stop before the tables were complete.
-  std::shared_ptr<const GoalHeuristics> compute(int goal_x, int goal_y, int goal_heading,
-                                                bool inadmissible = true, unsigned threads = 0,
-                                                bool backward = false,
-                                                const StopCondition* stop = nullptr) const;
+  /// `search_start` (a cell, or null): where the search begins. With it and two threads or more,
+  /// the grids that other threads compute are returned as soon as that cell's distance is final
+  /// in each, and those threads complete them in the background (DistanceGrid::progress);
+  /// `stop` counts until the return only. Without it, every grid is complete on return.
+  std::shared_ptr<const GoalHeuristics> compute(
+      int goal_x, int goal_y, int goal_heading, bool inadmissible = true, unsigned threads = 0,
+      bool backward = false, const StopCondition* stop = nullptr,
+      const std::pair<int, int>* search_start = nullptr) const;
   /// The grids of old's goal (old->goal_x, goal_y, goal_heading) for this builder's map,
   /// repaired from `old`: grids computed for a version of this map whose cells differed from
   /// this one's only inside the rectangles `changed` (with the same configuration). Equal to
@@ -98,8 +137,20 @@ class HeuristicGridBuilder {
   /// One grid alone (for tests and timing).
   DistanceGrid computeOne(GridKind kind, int goal_x, int goal_y) const;
   bool needed(GridKind kind) const { return needed_[static_cast<int>(kind)]; }
+  /// Stops the grids still completing in the background (their readers then see them
+  /// abandoned) and joins their threads.
+  ~HeuristicGridBuilder();
+  HeuristicGridBuilder(const HeuristicGridBuilder&) = delete;
+  HeuristicGridBuilder& operator=(const HeuristicGridBuilder&) = delete;
 
  private:
+  struct Job;
+  /// A thread completing grids after compute() returned, and its job.
+  struct Background {
+    std::thread thread;
+    std::shared_ptr<Job> job;
+    std::atomic<bool> done{false};
+  };
   struct Kind {
     std::vector<std::uint8_t> level;  // padded; 255 = blocked, else the cost class 0..252
     std::vector<std::int64_t> move_offsets;
@@ -119,14 +170,19 @@ class HeuristicGridBuilder {
                  const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class,
                  const HeuristicGridBuilder* previous);
   /// compute() and repair(): repairs from `old` where it can (old and changed non-null).
-  std::shared_ptr<const GoalHeuristics> computeOrRepair(int goal_x, int goal_y, int goal_heading,
-                                                        bool inadmissible, unsigned threads,
-                                                        bool backward, const StopCondition* stop,
-                                                        std::shared_ptr<const GoalHeuristics> old,
-                                                        const std::vector<CellRect>* changed) const;
+  std::shared_ptr<const GoalHeuristics> computeOrRepair(
+      int goal_x, int goal_y, int goal_heading, bool inadmissible, unsigned threads, bool backward,
+      const StopCondition* stop, std::shared_ptr<const GoalHeuristics> old,
+      const std::vector<CellRect>* changed, const std::pair<int, int>* search_start) const;
+  /// Runs the job's tasks from its queue until none is left.
+  void work(Job& job, const StopCondition* stop) const;
+  /// Joins the background threads that have finished (all of them, and stopping them first,
+  /// if `all`).
+  void reapBackground(bool all) const;
   // These return false when `stop` asked to stop (the grid is then incomplete).
+  /// With `progress`, run() publishes how far the grid is final (GridProgress), filled first.
   bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid,
-           const StopCondition* stop = nullptr) const;
+           const StopCondition* stop = nullptr, GridProgress* progress = nullptr) const;
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
                   const std::vector<CellRect>& changed, DistanceGrid& grid,
                   const StopCondition* stop) const;  // grid may be old
@@ -137,14 +193,16 @@ class HeuristicGridBuilder {
   bool canSaturate(const Kind& kind) const;
   /// The cost of move m from padded cell i (dijkstra()'s relaxation), kUnreachable if blocked.
   std::uint32_t moveCost(const Kind& kind, std::size_t i, std::size_t m) const;
-  // Dijkstra from the cells already in `queue` (with their distances in dist).
+  // Dijkstra from the cells already in `queue` (with their distances in dist); stores distances
+  // atomically and, with `settled`, publishes how far they are final (GridProgress).
   template <class Queue>
-  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                const StopCondition* stop) const;
+  bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop,
+                std::atomic<std::uint32_t>* settled = nullptr) const;
   /// The 8-connected (kKnights false) and 16-connected moves, unrolled.
   template <bool kKnights, class Queue>
   bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                        const StopCondition* stop) const;
+                        const StopCondition* stop,
+                        std::atomic<std::uint32_t>* settled = nullptr) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;
@@ -153,6 +211,8 @@ class HeuristicGridBuilder {
   bool needed_[kNumGridKinds] = {false, false, false, false};
   int alias_[kNumGridKinds] = {0, 1, 2, 3};  // a kind computed as another (identical) kind
   double scale_[kNumGridKinds] = {1.0, 1.0, 1.0, 1.0};  // ... times this factor
+  mutable std::mutex background_mutex_;
+  mutable std::list<Background> background_;  // guarded by background_mutex_
 };
 
 }  // namespace lattice
