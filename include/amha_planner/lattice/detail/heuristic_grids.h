@@ -74,7 +74,11 @@ struct DistanceGrid {
   std::shared_ptr<GridProgress> progress;
   std::uint32_t at(int x, int y) const {
     const std::size_t i = static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2);
-    return progress ? progress->read(dist.data(), i) : dist[i];
+    if (!progress) return dist[i];
+    // Inline while the cell is final (GridProgress); out of line only to wait.
+    const std::uint32_t p = progress->settled.load(std::memory_order_acquire);
+    const std::uint32_t v = __atomic_load_n(dist.data() + i, __ATOMIC_RELAXED);
+    return v <= p ? v : progress->read(dist.data(), i);
   }
 };
 
