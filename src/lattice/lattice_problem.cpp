@@ -179,7 +179,7 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue*
     if (base != nullptr) *base = e;
     return e;
   }
-  const std::uint32_t g = grids_[0]->at(x, y);
+  const std::uint32_t g = gridAt(0, x, y);
   if (g == kUnreachable) return kInfiniteHeuristic;  // provably cannot reach the goal
   const double a = std::floor(euclid + turn_euclid_[heading]);
   const double b = std::floor((g + turn_grid_[heading]) / kGridFraction);
@@ -203,6 +203,10 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
     for (std::size_t i = 0; i < count; ++i) h[i] = 0, last_bases_[i] = 0;
     return;
   }
+  if (!grids_complete_) {
+    grids_complete_ = true;
+    for (const DistanceGrid* g : grids_) grids_complete_ = grids_complete_ && (!g || g->complete());
+  }
   const LatticeState st = state(s);
   h[0] = anchor(st.x, st.y, st.heading, &last_bases_[0]);
   // The inadmissible ones: each Dijkstra, with the kinematic table (kKinematic) the larger of
@@ -211,7 +215,7 @@ void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count)
                        ? kinematic_.value(st.x - goal_x_, st.y - goal_y_, st.heading)
                        : 0.0;
   for (std::size_t i = 1; i < count; ++i) {
-    const std::uint32_t g = grids_[i]->at(st.x, st.y);
+    const std::uint32_t g = gridAt(static_cast<int>(i), st.x, st.y);
     if (g == kUnreachable) {
       h[i] = kInfiniteHeuristic;
       last_bases_[i] = 0;

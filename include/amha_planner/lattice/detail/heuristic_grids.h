@@ -80,6 +80,15 @@ struct DistanceGrid {
     const std::uint32_t v = __atomic_load_n(dist.data() + i, __ATOMIC_RELAXED);
     return v <= p ? v : progress->read(dist.data(), i);
   }
+  /// Whether every cell is final (then read them with atComplete()): no progress, or its
+  /// Dijkstra has ended (an acquire, so that the plain reads after it see the distances).
+  bool complete() const {
+    return !progress || progress->settled.load(std::memory_order_acquire) == kUnreachable;
+  }
+  /// A cell of a grid that complete() said is complete, without at()'s check.
+  std::uint32_t atComplete(int x, int y) const {
+    return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)];
+  }
 };
 
 /// Which grid; the anchor grid exists only with LatticeConfig::Heuristics::grid_anchor.
