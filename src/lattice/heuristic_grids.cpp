@@ -358,42 +358,45 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
   return true;
 }
 
+bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, DistanceGrid& grid,
+                                            const StopCondition* stop,
+                                            GridProgress* progress) const {
+  const int pw = width_ + 4;
+  const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
+  grid.width = width_;
+  grid.height = height_;
+  grid.max_distance = 0;
+  if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
+  std::uint32_t* dist = grid.dist.data();
+  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
+  const bool passable = kind.level[goal] != 255;
+  if (passable) dist[goal] = 0;
+  if (progress != nullptr) progress->filled.store(true, std::memory_order_release);
+  if (!passable) return true;
+  std::atomic<std::uint32_t>* settled = progress != nullptr ? &progress->settled : nullptr;
+  const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
+  // Every finite distance is popped, the largest last.
+  auto search = [&](auto& queue) {
+    queue.push(0, goal);
+    const bool complete = eight     ? dijkstraUnrolled<false>(kind, dist, queue, stop, settled)
+                          : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop, settled)
+                                    : dijkstra(kind, dist, queue, stop, settled);
+    grid.max_distance = queue.lastPopped();
+    return complete;
+  };
+  // Dial's queue needs every key within max_step of the current one, so it is used only when
+  // no distance can reach the saturation value.
+  if (kind.max_step < 4096 && !canSaturate(kind)) {
+    detail::DialQueue q(kind.max_step);
+    return search(q);
+  }
+  detail::RadixHeap q;
+  return search(q);
+}
+
 bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& grid,
                                const StopCondition* stop, GridProgress* progress) const {
-  auto dijkstraFromGoal = [&]() {
-    const int pw = width_ + 4;
-    const std::size_t total = static_cast<std::size_t>(pw) * (height_ + 4);
-    grid.width = width_;
-    grid.height = height_;
-    grid.max_distance = 0;
-    if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
-    std::uint32_t* dist = grid.dist.data();
-    const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
-    const bool passable = kind.level[goal] != 255;
-    if (passable) dist[goal] = 0;
-    if (progress != nullptr) progress->filled.store(true, std::memory_order_release);
-    if (!passable) return true;
-    std::atomic<std::uint32_t>* settled = progress != nullptr ? &progress->settled : nullptr;
-    const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
-    // Every finite distance is popped, the largest last.
-    auto search = [&](auto& queue) {
-      queue.push(0, goal);
-      const bool complete = eight     ? dijkstraUnrolled<false>(kind, dist, queue, stop, settled)
-                            : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop, settled)
-                                      : dijkstra(kind, dist, queue, stop, settled);
-      grid.max_distance = queue.lastPopped();
-      return complete;
-    };
-    // Dial's queue needs every key within max_step of the current one, so it is used only when
-    // no distance can reach the saturation value.
-    if (kind.max_step < 4096 && !canSaturate(kind)) {
-      detail::DialQueue q(kind.max_step);
-      return search(q);
-    }
-    detail::RadixHeap q;
-    return search(q);
-  };
-  const bool complete = dijkstraFromGoal();
+  const bool complete = dijkstraFromGoal(kind, gx, gy, grid, stop, progress);
   if (progress != nullptr) {
     if (complete) {
       progress->settled.store(kUnreachable, std::memory_order_release);
@@ -547,27 +550,25 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::repair(
                          &changed, nullptr);
 }
 
+bool HeuristicGridBuilder::runTask(Job& job, int k, const StopCondition* stop) const {
+  if (k < 0) {
+    const std::shared_ptr<const GoalHeuristics>& old = job.old;
+    job.out->coarse = old && !old->coarse.empty()
+                          ? coarse_->repairDistances(old->coarse, *job.changed, job.gx, job.gy,
+                                                     job.gh, job.backward, stop)
+                          : coarse_->distances(job.gx, job.gy, job.gh, job.backward, stop);
+    job.out->coarse_lattice = coarse_.get();
+    return !job.out->coarse.empty();
+  }
+  if (job.base[k] != nullptr)
+    return repairGrid(kinds_[k], job.gx, job.gy, *job.base[k], *job.changed, *job.result[k], stop);
+  return run(kinds_[k], job.gx, job.gy, *job.result[k], stop, job.result[k]->progress.get());
+}
+
 void HeuristicGridBuilder::work(Job& job, const StopCondition* stop) const {
   for (std::size_t t; !job.stopped.load(std::memory_order_relaxed) &&
                       (t = job.next.fetch_add(1)) < job.tasks.size();) {
-    const int k = job.tasks[t];
-    bool complete;
-    if (k < 0) {
-      const std::shared_ptr<const GoalHeuristics>& old = job.old;
-      job.out->coarse = old && !old->coarse.empty()
-                            ? coarse_->repairDistances(old->coarse, *job.changed, job.gx, job.gy,
-                                                       job.gh, job.backward, stop)
-                            : coarse_->distances(job.gx, job.gy, job.gh, job.backward, stop);
-      job.out->coarse_lattice = coarse_.get();
-      complete = !job.out->coarse.empty();
-    } else if (job.base[k] != nullptr) {
-      complete =
-          repairGrid(kinds_[k], job.gx, job.gy, *job.base[k], *job.changed, *job.result[k], stop);
-    } else {
-      complete =
-          run(kinds_[k], job.gx, job.gy, *job.result[k], stop, job.result[k]->progress.get());
-    }
-    if (!complete) job.stopped.store(true, std::memory_order_relaxed);
+    if (!runTask(job, job.tasks[t], stop)) job.stopped.store(true, std::memory_order_relaxed);
   }
 }
 
@@ -654,29 +655,22 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
         });
       }
     }
-    if (coarse_) {
-      out.coarse = coarse_->distances(gx, gy, gh, backward, stop);
-      out.coarse_lattice = coarse_.get();
-      if (out.coarse.empty()) job->stopped.store(true);
-    }
+    if (coarse_ && !runTask(*job, -1, stop)) job->stopped.store(true);
     // More grids than helpers: this thread takes some too (those it takes it completes).
     if (grid_tasks > helpers) work(*job, stop);
-    // Until the search's first cell is final in every grid (or the call is stopped).
-    for (unsigned spins = 0; !job->stopped.load();) {
-      bool ready = true;
-      for (int k : tasks) {
-        if (k < 0) continue;
-        const GridProgress& p = *result[k]->progress;
-        if (p.abandoned.load(std::memory_order_acquire)) {
-          job->stopped.store(true);
-          break;
-        }
-        const std::size_t i = static_cast<std::size_t>(search_start->second + 2) * (width_ + 4) +
+    // Until the search's first cell is final in every grid, or a task or the caller stopped
+    // (a helper's stopped task sets job->stopped too).
+    const std::size_t first = static_cast<std::size_t>(search_start->second + 2) * (width_ + 4) +
                               (search_start->first + 2);
-        if (!p.filled.load(std::memory_order_acquire) || !p.settledAt(result[k]->dist.data(), i))
-          ready = false;
-      }
-      if (ready) break;
+    auto ready = [&] {
+      return std::all_of(tasks.begin(), tasks.end(), [&](int k) {
+        if (k < 0) return true;
+        const GridProgress& p = *result[k]->progress;
+        return p.filled.load(std::memory_order_acquire) &&
+               p.settledAt(result[k]->dist.data(), first);
+      });
+    };
+    for (unsigned spins = 0; !job->stopped.load() && !ready();) {
       if (stop != nullptr && stop->requested()) job->stopped.store(true);
       pause(spins);
     }

@@ -51,7 +51,7 @@ struct GridProgress {
   /// final, and read() returns `settled` for them (a lower bound of their distance).
   std::atomic<bool> abandoned{false};
 
-  /// Whether cell i's distance is final; needs `filled`.
+  /// Whether cell i's distance is final; needs `filled` (before it, dist may be reallocated).
   bool settledAt(const std::uint32_t* dist, std::size_t i) const {
     const std::uint32_t p = settled.load(std::memory_order_acquire);
     return __atomic_load_n(dist + i, __ATOMIC_RELAXED) <= p;
@@ -187,15 +187,21 @@ class HeuristicGridBuilder {
       int goal_x, int goal_y, int goal_heading, bool inadmissible, unsigned threads, bool backward,
       const StopCondition* stop, std::shared_ptr<const GoalHeuristics> old,
       const std::vector<CellRect>* changed, const std::pair<int, int>* search_start) const;
+  /// Task k of a job (-1: the block abstraction; else grid kind k); false if stopped.
+  bool runTask(Job& job, int k, const StopCondition* stop) const;
   /// Runs the job's tasks from its queue until none is left.
   void work(Job& job, const StopCondition* stop) const;
   /// Joins the background threads that have finished (all of them, and stopping them first,
   /// if `all`).
   void reapBackground(bool all) const;
   // These return false when `stop` asked to stop (the grid is then incomplete).
-  /// With `progress`, run() publishes how far the grid is final (GridProgress), filled first.
+  /// With `progress`, run() publishes how far the grid is final (GridProgress), filled first,
+  /// and at the end that it is complete or abandoned.
   bool run(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid,
            const StopCondition* stop = nullptr, GridProgress* progress = nullptr) const;
+  /// run()'s fill and Dijkstra.
+  bool dijkstraFromGoal(const Kind& kind, int goal_x, int goal_y, DistanceGrid& grid,
+                        const StopCondition* stop, GridProgress* progress) const;
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
                   const std::vector<CellRect>& changed, DistanceGrid& grid,
                   const StopCondition* stop) const;  // grid may be old
