@@ -659,7 +659,9 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
     // More grids than helpers: this thread takes some too (those it takes it completes).
     if (grid_tasks > helpers) work(*job, stop);
     // Until the search's first cell is final in every grid, or a task or the caller stopped
-    // (a helper's stopped task sets job->stopped too).
+    // (a helper's stopped task sets job->stopped too). The caller's stop is read before ready():
+    // the helpers do not see it, and a small abstraction may finish before its first check, so
+    // a call stopped before it returns must not return grids.
     const std::size_t first = static_cast<std::size_t>(search_start->second + 2) * (width_ + 4) +
                               (search_start->first + 2);
     auto ready = [&] {
@@ -670,9 +672,9 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
                p.settledAt(result[k]->dist.data(), first);
       });
     };
-    for (unsigned spins = 0; !job->stopped.load() && !ready();) {
+    for (unsigned spins = 0;; pause(spins)) {
       if (stop != nullptr && stop->requested()) job->stopped.store(true);
-      pause(spins);
+      if (job->stopped.load() || ready()) break;
     }
     if (job->stopped.load()) {
       job->cancel.store(true);
