@@ -82,7 +82,10 @@ HeuristicGridBuilder::~HeuristicGridBuilder() { reapBackground(true); }
 void HeuristicGridBuilder::reapBackground(bool all) const {
   std::lock_guard<std::mutex> lock(background_mutex_);
   if (all) {
-    for (Background& b : background_) b.job->cancel.store(true, std::memory_order_relaxed);
+    for (Background& b : background_) {
+      if (const std::shared_ptr<Job> job = b.job.lock())
+        job->cancel.store(true, std::memory_order_relaxed);
+    }
   }
   for (auto it = background_.begin(); it != background_.end();) {
     if (all || it->done.load(std::memory_order_acquire)) {

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <memory>
 #include <numeric>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -137,6 +140,28 @@ TEST(BackgroundThreadGrids, AStoppedCallReturnsNull) {
   const StopCondition go(&cancel, 10.0);
   EXPECT_NE(b.compute(40, 30, 0, true, 2, false, &go, &start), nullptr)
       << "the builder still works";
+}
+
+// A helper that completes its grids lets go of them: once the caller drops the heuristics, the
+// grids are freed without another compute() or the builder's end (a server between queries).
+TEST(BackgroundThreadGrids, ACompletedHelperReleasesItsGrids) {
+  auto map = test::randomMap(300, 220, 0.05, 5, 60, 120);
+  const std::pair<int, int> goal{40, 30}, start{41, 30};
+  map->cost[goal.second * map->width + goal.first] = 0;
+  map->cost[start.second * map->width + start.first] = 0;
+  LatticeGraph g(map, roundRobot());
+  HeuristicGridBuilder b(g);
+  auto early = b.compute(goal.first, goal.second, 0, true, 2, false, nullptr, &start);
+  ASSERT_TRUE(early && early->grids[0] && early->grids[0]->progress);
+  const std::shared_ptr<const GridProgress> progress = early->grids[0]->progress;
+  const std::weak_ptr<const DistanceGrid> grid = early->grids[0];
+  ASSERT_TRUE(progress->waitComplete());
+  early.reset();
+  // The helper may still be between publishing completion and ending; a few seconds at most.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!grid.expired() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_TRUE(grid.expired()) << "the finished job still holds the grid";
 }
 
 }  // namespace

@@ -158,10 +158,12 @@ class HeuristicGridBuilder {
 
  private:
   struct Job;
-  /// A thread completing grids after compute() returned, and its job.
+  /// A thread completing grids after compute() returned, and its job. The thread holds the job;
+  /// this only reaches it to cancel, so a finished job's grids go with the last GoalHeuristics
+  /// holding them, not at the next compute().
   struct Background {
     std::thread thread;
-    std::shared_ptr<Job> job;
+    std::weak_ptr<Job> job;
     std::atomic<bool> done{false};
   };
   struct Kind {
