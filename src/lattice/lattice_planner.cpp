@@ -615,14 +615,14 @@ std::vector<std::array<double, 2>> LatticePlanner::footprintAt(const Pose2D& pos
 PlannerConfig defaultPlannerConfig(Algorithm algorithm) {
   PlannerConfig c = defaultConfig(algorithm);
   if (algorithm == Algorithm::kAmhaStar) {
-    c.w1 = 1.1;
+    c.w1 = 1.03;
     c.w2 = 5.0;
     c.weight_schedule = WeightSchedule::kCertified;
     c.certified_ratio = 0.0;
     c.certified_split = 0.0;
     c.publish_within_iterations = true;
     c.stall_expansions = 10000;
-    c.stall_w1 = 2.0;
+    c.stall_w1 = 1.5;
   }
   return c;
 }

@@ -133,7 +133,7 @@ const geometry_msgs::PoseStamped kRoomGoal = pose(9.0, 4.0, M_PI / 2, "map");
 const geometry_msgs::PoseStamped kMazeGoal = pose(27.5, 16.5, 0.0, "map");
 
 TEST(Reconfigure, SearchParametersApplyToTheNextRequest) {
-  // The loaded configuration: A-MHA* with the lattice's preset weights (w1 = 1.1, w2 = 5).
+  // The loaded configuration: A-MHA* with the lattice's preset weights (w1 = 1.03, w2 = 5).
   const amha::PlannerConfig preset =
       amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar);
   auto res = plan(kStart, kRoomGoal);
