@@ -622,7 +622,7 @@ PlannerConfig defaultPlannerConfig(Algorithm algorithm) {
     c.certified_split = 0.0;
     c.publish_within_iterations = true;
     c.stall_expansions = 10000;
-    c.stall_w1 = 1.5;
+    c.stall_w1 = 2.0;
   }
   return c;
 }

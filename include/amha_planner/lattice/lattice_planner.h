@@ -224,7 +224,7 @@ class LatticePlanner {
 /// amha::defaultConfig(algorithm), except for A-MHA*, whose paper preset (w1 = w2 = 5, steps of
 /// 0.5) gives a first path 10-15 % above the optimum and then nothing until the proof. Here it
 /// starts at w1 = 1.03, w2 = 5 (with the kinematic inadmissible heuristics the first path is then
-/// within about 1 % of the optimum), goes on with w1 = 1.5 if that first iteration has expanded
+/// within about 1 % of the optimum), goes on with w1 = 2 if that first iteration has expanded
 /// 10,000 states without a path (hard queries, where a w1 near 1 crawls), then straight to the
 /// proof (certified schedule, ratio 0: intermediate iterations cost more than they find,
 /// docs/lattice.md), and publishes every cheaper path and every halving of the certified
