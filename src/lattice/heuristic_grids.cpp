@@ -200,8 +200,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
       const std::size_t i = static_cast<std::size_t>(y) * width_ + x;
       const std::uint8_t c = cost[i];
       const bool passable = c <= max_cost_class && (mask == nullptr || (*mask)[i]);
-      kind.level[static_cast<std::size_t>(y + 2) * pw + (x + 2)] =
-          passable ? std::min<std::uint8_t>(c, 252) : 255;
+      kind.level[paddedIndex(width_, x, y)] = passable ? std::min<std::uint8_t>(c, 252) : 255;
     }
   }
   const std::vector<GridMove> moves = gridMoves(connectivity);
@@ -371,7 +370,7 @@ bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, Di
   grid.max_distance = 0;
   if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
   std::uint32_t* dist = grid.dist.data();
-  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
+  const std::uint32_t goal = static_cast<std::uint32_t>(paddedIndex(width_, gx, gy));
   const bool passable = kind.level[goal] != 255;
   if (passable) dist[goal] = 0;
   if (progress != nullptr) progress->filled.store(true, std::memory_order_release);
@@ -482,7 +481,7 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   const std::uint8_t* level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
-  const std::uint32_t goal = static_cast<std::uint32_t>((gy + 2) * pw + (gx + 2));
+  const std::uint32_t goal = static_cast<std::uint32_t>(paddedIndex(width_, gx, gy));
   // The cells whose moves (to or from them) may cost something else: a move's cells lie in the
   // box between its two ends.
   std::vector<CellRect> near;
@@ -494,7 +493,7 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   auto forNear = [&](auto&& f) {
     for (const CellRect& r : near) {
       for (int y = r.y0; y < r.y1; ++y) {
-        for (int x = r.x0; x < r.x1; ++x) f(static_cast<std::uint32_t>((y + 2) * pw + (x + 2)));
+        for (int x = r.x0; x < r.x1; ++x) f(static_cast<std::uint32_t>(paddedIndex(width_, x, y)));
       }
     }
   };
@@ -665,8 +664,7 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
     // (a helper's stopped task sets job->stopped too). The caller's stop is read before ready():
     // the helpers do not see it, and a small abstraction may finish before its first check, so
     // a call stopped before it returns must not return grids.
-    const std::size_t first = static_cast<std::size_t>(search_start->second + 2) * (width_ + 4) +
-                              (search_start->first + 2);
+    const std::size_t first = paddedIndex(width_, search_start->first, search_start->second);
     auto ready = [&] {
       return std::all_of(tasks.begin(), tasks.end(), [&](int k) {
         if (k < 0) return true;

@@ -63,8 +63,7 @@ TEST(BackgroundThreadGrids, EveryCellReadsAsTheCompleteGrid) {
       EXPECT_EQ(full->grids[k]->progress, nullptr) << "no search start: complete on return";
       if (e.progress) {
         ++handed_early;
-        const std::size_t i =
-            static_cast<std::size_t>(start.second + 2) * (e.width + 4) + (start.first + 2);
+        const std::size_t i = paddedIndex(e.width, start.first, start.second);
         EXPECT_TRUE(e.progress->settledAt(e.dist.data(), i)) << "seed " << seed << " grid " << k;
       }
     }

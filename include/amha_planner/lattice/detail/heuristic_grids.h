@@ -62,6 +62,12 @@ struct GridProgress {
   bool waitComplete() const;
 };
 
+/// Index of cell (x, y) of a grid `width` cells wide, stored with a 2-cell border (padded width
+/// width + 4): the one layout of the grids, their cost classes and the search's first cell.
+inline std::size_t paddedIndex(int width, int x, int y) {
+  return static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2);
+}
+
 /// One Dijkstra grid, stored with a 2-cell blocked border (padded width width + 4).
 struct DistanceGrid {
   int width = 0, height = 0;
@@ -73,7 +79,7 @@ struct DistanceGrid {
   /// for a grid complete when it was handed out.
   std::shared_ptr<GridProgress> progress;
   std::uint32_t at(int x, int y) const {
-    const std::size_t i = static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2);
+    const std::size_t i = paddedIndex(width, x, y);
     if (!progress) return dist[i];
     // Inline while the cell is final (GridProgress); out of line only to wait.
     const std::uint32_t p = progress->settled.load(std::memory_order_acquire);
@@ -86,9 +92,7 @@ struct DistanceGrid {
     return !progress || progress->settled.load(std::memory_order_acquire) == kUnreachable;
   }
   /// A cell of a grid that complete() said is complete, without at()'s check.
-  std::uint32_t atComplete(int x, int y) const {
-    return dist[static_cast<std::size_t>(y + 2) * (width + 4) + (x + 2)];
-  }
+  std::uint32_t atComplete(int x, int y) const { return dist[paddedIndex(width, x, y)]; }
 };
 
 /// Which grid; the anchor grid exists only with LatticeConfig::Heuristics::grid_anchor.
