@@ -16,6 +16,7 @@ amha_add_gtest(amha_search_tests
   SOURCES
     test/search/test_graphs.cpp
     test/search/bucket_queue_test.cpp
+    test/search/key_bucket_queue_test.cpp
     test/search/realloc_vector_test.cpp
     test/search/indexed_heap_test.cpp
     test/search/optimality_test.cpp

@@ -1,10 +1,9 @@
 // The A-MHA* engine's queue for domains with small integer keys (the sliding tiles): nested
 // buckets, one per key value f and, inside it, one per heuristic value h, so that pops come in
 // (f, h) order like the heap's (smaller h first: the deeper state among equal f), newest first
-// among equal (f, h). Each (f, h) bucket is a stack of 4-byte state ids in 64-byte blocks from a
-// shared pool. Push and pop touch a few cache lines, where a heap of millions of entries walks a
-// dozen levels per pop. Like LazyQueue, entries are never changed in place; the engine skips
-// stale ones.
+// among equal (f, h). Each (f, h) bucket is a stack of 4-byte state ids (id_stacks.h). Push and pop
+// touch a few cache lines, where a heap of millions of entries walks a dozen levels per pop. Like
+// LazyQueue, entries are never changed in place; the engine skips stale ones.
 //
 // Keys are f * scale for a scale that makes them integers (f = g + w1 * h with integer g and h,
 // so any w1 that is a multiple of 1 / scale).
@@ -15,8 +14,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "amha_planner/search/detail/realloc_vector.h"
 #include "amha_planner/search/types.h"
+#include "id_stacks.h"
 
 namespace amha {
 namespace detail {
@@ -39,8 +38,7 @@ class BucketQueue {
   double topKey() const { return static_cast<double>(min_) / scale_; }
   StateId topId() const {
     const FBucket& fb = f_[min_];
-    const Block& b = blocks_[fb.heads[fb.min_h - fb.base]];
-    return b.ids[b.count - 1];
+    return stacks_.top(fb.heads[fb.min_h - fb.base]);
   }
 
   void push(double f, HeuristicValue h, StateId id) {
@@ -50,34 +48,24 @@ class BucketQueue {
     const std::size_t before = fb.heads.capacity();
     std::uint32_t& head = fb.slot(h);
     stack_heads_ += fb.heads.capacity() - before;
-    if (head == kNone || blocks_[head].count == kIds) {
-      const std::uint32_t nb = newBlock();
-      blocks_[nb].next = head;
-      head = nb;
-    }
-    store(k, fb, blocks_[head], h, id);
+    stacks_.push(head, id);
+    count(k, fb, h);
   }
 
   /// push() when it allocates nothing (its stack exists and its newest block has room, the
   /// common case); otherwise false and nothing changes. Saves a growthBytes() lookup per push.
   bool tryPush(double f, HeuristicValue h, StateId id) {
     const std::size_t k = bucketOf(f);
-    const std::uint32_t b = blockWithRoom(k, h);
-    if (b == kNone) return false;
-    store(k, f_[k], blocks_[b], h, id);
+    if (!stackHasRoom(k, h)) return false;
+    FBucket& fb = f_[k];
+    stacks_.push(fb.heads[h - fb.base], id);
+    count(k, fb, h);
     return true;
   }
 
   void pop() {
     FBucket& fb = f_[min_];
-    std::uint32_t& head = fb.heads[fb.min_h - fb.base];
-    Block& b = blocks_[head];
-    if (--b.count == 0) {
-      const std::uint32_t freed = head;
-      head = b.next;
-      b.next = free_;
-      free_ = freed;
-    }
+    stacks_.pop(fb.heads[fb.min_h - fb.base]);
     --size_;
     if (--fb.count > 0) {
       while (fb.heads[fb.min_h - fb.base] == kNone) ++fb.min_h;  // a stack above is non-empty
@@ -90,8 +78,7 @@ class BucketQueue {
 
   void clear() {
     for (FBucket& fb : f_) fb.reset();
-    blocks_.clear();
-    free_ = kNone;
+    stacks_.clear();
     size_ = 0;
     min_ = kEmptyMin;
   }
@@ -101,17 +88,13 @@ class BucketQueue {
   void forEach(F&& fn) const {
     for (std::size_t k = 0; k < f_.size(); ++k) {
       if (f_[k].count == 0) continue;
-      for (std::uint32_t head : f_[k].heads) {
-        for (std::uint32_t bi = head; bi != kNone; bi = blocks_[bi].next) {
-          const Block& b = blocks_[bi];
-          for (std::uint32_t j = 0; j < b.count; ++j) fn(static_cast<double>(k) / scale_, b.ids[j]);
-        }
-      }
+      const double f = static_cast<double>(k) / scale_;
+      for (std::uint32_t head : f_[k].heads) stacks_.forEach(head, [&](StateId id) { fn(f, id); });
     }
   }
 
   std::size_t memoryBytes() const {
-    return blocks_.capacity() * sizeof(Block) + f_.capacity() * sizeof(FBucket) +
+    return stacks_.memoryBytes() + f_.capacity() * sizeof(FBucket) +
            stack_heads_ * sizeof(std::uint32_t);
   }
   /// Bytes push(f, h, ...) may allocate (0 unless the pool or a bucket array must grow).
@@ -120,28 +103,18 @@ class BucketQueue {
     std::size_t bytes = 0;
     if (k >= f_.size()) {
       bytes += std::max(k + 1, 2 * f_.size()) * sizeof(FBucket) + sizeof(std::uint32_t);
-    } else if (blockWithRoom(k, h) != kNone) {
+    } else if (stackHasRoom(k, h)) {
       return 0;  // the common case: the stack's newest block has room
     } else if (f_[k].spanWith(h) > f_[k].heads.capacity()) {
       bytes += 2 * f_[k].spanWith(h) * sizeof(std::uint32_t);
     }
     // Past this point the push takes a new block.
-    if (free_ == kNone && blocks_.size() == blocks_.capacity()) {
-      bytes += std::max<std::size_t>(blocks_.capacity(), 1) * sizeof(Block);
-    }
-    return bytes;
+    return bytes + stacks_.newBlockBytes();
   }
 
  private:
-  static constexpr std::uint32_t kNone = 0xffffffffu;
+  static constexpr std::uint32_t kNone = IdStacks::kNone;
   static constexpr std::size_t kEmptyMin = static_cast<std::size_t>(-1);
-  static constexpr std::uint32_t kIds = 14;
-  struct Block {
-    std::uint32_t next;   // the block below it in its stack, or kNone
-    std::uint32_t count;  // ids in use; the newest is ids[count - 1]
-    std::uint32_t ids[kIds];
-  };
-  static_assert(sizeof(Block) == 64, "one block per cache line");
 
   // The entries of one key value: a stack per h in [base, base + heads.size()). The array
   // keeps its capacity when the bucket empties, so a warmed-up search allocates nothing.
@@ -180,40 +153,24 @@ class BucketQueue {
   // rounds it; std::llround is a library call.
   std::size_t bucketOf(double f) const { return static_cast<std::size_t>(f * scale_ + 0.5); }
 
-  // The newest block of the stack for key bucket k and h if that stack exists and the block
-  // has room (a push there allocates nothing), else kNone.
-  std::uint32_t blockWithRoom(std::size_t k, HeuristicValue h) const {
-    if (k >= f_.size()) return kNone;
+  // True if the stack for key bucket k and h exists and a push there allocates nothing.
+  bool stackHasRoom(std::size_t k, HeuristicValue h) const {
+    if (k >= f_.size()) return false;
     const FBucket& fb = f_[k];
-    if (fb.count == 0 || h < fb.base || h - fb.base >= fb.heads.size()) return kNone;
-    const std::uint32_t head = fb.heads[h - fb.base];
-    return head != kNone && blocks_[head].count < kIds ? head : kNone;
+    if (fb.count == 0 || h < fb.base || h - fb.base >= fb.heads.size()) return false;
+    return stacks_.hasRoom(fb.heads[h - fb.base]);
   }
 
-  // Adds id to block b, the newest of fb's stack for h (fb is key bucket k).
-  void store(std::size_t k, FBucket& fb, Block& b, HeuristicValue h, StateId id) {
-    b.ids[b.count++] = id;
+  // Counts an id just pushed on fb's stack for h (fb is key bucket k).
+  void count(std::size_t k, FBucket& fb, HeuristicValue h) {
     if (fb.count++ == 0 || h < fb.min_h) fb.min_h = h;
     ++size_;
     if (k < min_) min_ = k;
   }
 
-  std::uint32_t newBlock() {
-    std::uint32_t b = free_;
-    if (b != kNone) {
-      free_ = blocks_[b].next;
-    } else {
-      b = static_cast<std::uint32_t>(blocks_.size());
-      blocks_.resize(blocks_.size() + 1);
-    }
-    blocks_[b].count = 0;
-    return b;
-  }
-
   double scale_;
   std::vector<FBucket> f_;  // per key f * scale
-  ReallocVector<Block> blocks_;
-  std::uint32_t free_ = kNone;  // free blocks, linked through next
+  IdStacks stacks_;
   std::size_t size_ = 0;
   std::size_t min_ = kEmptyMin;  // lowest non-empty key bucket while size_ > 0
   std::size_t stack_heads_ = 0;  // capacity of all FBucket::heads arrays together

@@ -78,6 +78,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   w1_ = opt_.w1;
   w2_ = opt_.w2;
   small_keys_ = problem.smallIntegerKeys();
+  integer_keys_ = problem.integerKeys();
   resetQueues();
   iteration_ = 0;
   dts_ = opt_.schedule == QueueSchedule::kDts && nh() > 1;
@@ -366,8 +367,10 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
 }
 
 void MhaEngine::resetQueues() {
-  const double scale = small_keys_ ? OpenQueue::bucketScaleFor(w1_) : 0.0;
-  for (auto& q : open_) q.reset(scale);
+  const double scale = integer_keys_ ? OpenQueue::bucketScaleFor(w1_) : 0.0;
+  OpenQueue::Kind kind = OpenQueue::Kind::kHeap;
+  if (scale > 0) kind = small_keys_ ? OpenQueue::Kind::kBuckets : OpenQueue::Kind::kKeyBuckets;
+  for (auto& q : open_) q.reset(kind, scale);
 }
 
 void MhaEngine::clearClosed() {

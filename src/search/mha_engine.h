@@ -144,7 +144,8 @@ class MhaEngine : public SearchBase {
 
   MhaEngineOptions opt_;
   double w1_ = 1.0, w2_ = 1.0;
-  bool small_keys_ = false;  // the problem allows bucket queues
+  bool small_keys_ = false;    // the problem allows bucket queues nested per key and h
+  bool integer_keys_ = false;  // ... or one stack per key
   int iteration_ = 0;
   std::size_t next_queue_ = 1;  // the inadmissible queue the next step tries (1..N)
   bool dts_ = false;            // opt_.schedule == kDts and there are inadmissible queues

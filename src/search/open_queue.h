@@ -1,12 +1,14 @@
-// One OPEN queue of the A-MHA* engine: a bucket queue when the domain's keys are small integers
-// (after scaling) and a 4-ary heap otherwise. The engine picks the kind whenever the queue is
-// empty (at the start of every ImprovePath iteration, since w1 changes the keys' scale).
+// One OPEN queue of the A-MHA* engine: a bucket queue when the keys are integers after scaling
+// (nested per key and h when they are small, as the tiles'; one stack per key when they are
+// large, as the lattice's) and a 4-ary heap otherwise. The engine picks the kind whenever the
+// queue is empty (at the start of every ImprovePath iteration, since w1 changes the keys' scale).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 
 #include "bucket_queue.h"
+#include "key_bucket_queue.h"
 #include "lazy_queue.h"
 
 namespace amha {
@@ -14,6 +16,12 @@ namespace detail {
 
 class OpenQueue {
  public:
+  enum class Kind {
+    kHeap,        // any keys
+    kBuckets,     // small integer keys, ties to the smaller h (BucketQueue)
+    kKeyBuckets,  // integer keys of any size, ties newest first (KeyBucketQueue)
+  };
+
   /// The smallest scale in 1, 2, 4, ..., 64 that makes every key g + w1 * h an integer for
   /// integer g and h, or 0 if there is none (then only a heap can hold the keys).
   static double bucketScaleFor(double w1) {
@@ -24,55 +32,132 @@ class OpenQueue {
     return 0;
   }
 
-  /// Empties the queue and makes it a bucket queue with this scale, or a heap if scale is 0.
-  /// Both kinds keep their memory, so the iterations of an anytime search reuse it.
-  void reset(double bucket_scale) {
+  /// Empties the queue and makes it of this kind; a bucket kind takes keys f * bucket_scale
+  /// (bucketScaleFor). Every kind keeps its memory, so the iterations of an anytime search
+  /// reuse it.
+  void reset(Kind kind, double bucket_scale = 1.0) {
     heap_.clear();
-    buckets_.reset(bucket_scale > 0 ? bucket_scale : 1.0);
-    use_buckets_ = bucket_scale > 0;
+    buckets_.reset(kind == Kind::kBuckets ? bucket_scale : 1.0);
+    key_buckets_.reset(kind == Kind::kKeyBuckets ? bucket_scale : 1.0);
+    kind_ = kind;
   }
-  void clear() { use_buckets_ ? buckets_.clear() : heap_.clear(); }
+  void clear() {
+    switch (kind_) {
+      case Kind::kHeap:
+        return heap_.clear();
+      case Kind::kBuckets:
+        return buckets_.clear();
+      case Kind::kKeyBuckets:
+        return key_buckets_.clear();
+    }
+  }
 
-  bool usesBuckets() const { return use_buckets_; }
-  bool empty() const { return use_buckets_ ? buckets_.empty() : heap_.empty(); }
-  double topKey() const { return use_buckets_ ? buckets_.topKey() : heap_.top().f; }
-  StateId topId() const { return use_buckets_ ? buckets_.topId() : heap_.top().id; }
+  Kind kind() const { return kind_; }
+  bool empty() const {
+    switch (kind_) {
+      case Kind::kBuckets:
+        return buckets_.empty();
+      case Kind::kKeyBuckets:
+        return key_buckets_.empty();
+      default:
+        return heap_.empty();
+    }
+  }
+  double topKey() const {
+    switch (kind_) {
+      case Kind::kBuckets:
+        return buckets_.topKey();
+      case Kind::kKeyBuckets:
+        return key_buckets_.topKey();
+      default:
+        return heap_.top().f;
+    }
+  }
+  StateId topId() const {
+    switch (kind_) {
+      case Kind::kBuckets:
+        return buckets_.topId();
+      case Kind::kKeyBuckets:
+        return key_buckets_.topId();
+      default:
+        return heap_.top().id;
+    }
+  }
 
-  void push(const QueueEntry& e) { use_buckets_ ? buckets_.push(e.f, e.h, e.id) : heap_.push(e); }
+  void push(const QueueEntry& e) {
+    switch (kind_) {
+      case Kind::kHeap:
+        return heap_.push(e);
+      case Kind::kBuckets:
+        return buckets_.push(e.f, e.h, e.id);
+      case Kind::kKeyBuckets:
+        return key_buckets_.push(e.f, e.h, e.id);
+    }
+  }
   /// push(e) if that allocates nothing, else false (see growthBytes).
   bool tryPush(const QueueEntry& e) {
-    return use_buckets_ ? buckets_.tryPush(e.f, e.h, e.id) : heap_.tryPush(e);
+    switch (kind_) {
+      case Kind::kBuckets:
+        return buckets_.tryPush(e.f, e.h, e.id);
+      case Kind::kKeyBuckets:
+        return key_buckets_.tryPush(e.f, e.h, e.id);
+      default:
+        return heap_.tryPush(e);
+    }
   }
-  void pop() { use_buckets_ ? buckets_.pop() : heap_.pop(); }
+  void pop() {
+    switch (kind_) {
+      case Kind::kHeap:
+        return heap_.pop();
+      case Kind::kBuckets:
+        return buckets_.pop();
+      case Kind::kKeyBuckets:
+        return key_buckets_.pop();
+    }
+  }
 
   /// Adds without ordering; call restoreOrder() before the next top or pop.
   void appendUnordered(const QueueEntry& e) {
-    use_buckets_ ? buckets_.push(e.f, e.h, e.id) : heap_.appendUnordered(e);
+    kind_ == Kind::kHeap ? heap_.appendUnordered(e) : push(e);
   }
   void restoreOrder() {
-    if (!use_buckets_) heap_.heapify();
+    if (kind_ == Kind::kHeap) heap_.heapify();
   }
 
   /// Calls fn(f, id) for every entry (members and stale ones).
   template <typename F>
   void forEach(F&& fn) const {
-    if (use_buckets_) {
-      buckets_.forEach(fn);
-    } else {
-      for (const QueueEntry& e : heap_) fn(e.f, e.id);
+    switch (kind_) {
+      case Kind::kHeap:
+        for (const QueueEntry& e : heap_) fn(e.f, e.id);
+        return;
+      case Kind::kBuckets:
+        return buckets_.forEach(fn);
+      case Kind::kKeyBuckets:
+        return key_buckets_.forEach(fn);
     }
   }
 
-  std::size_t memoryBytes() const { return heap_.memoryBytes() + buckets_.memoryBytes(); }
+  std::size_t memoryBytes() const {
+    return heap_.memoryBytes() + buckets_.memoryBytes() + key_buckets_.memoryBytes();
+  }
   /// Bytes push(e) may allocate.
   std::size_t growthBytes(const QueueEntry& e) const {
-    return use_buckets_ ? buckets_.growthBytes(e.f, e.h) : heap_.growthBytes();
+    switch (kind_) {
+      case Kind::kBuckets:
+        return buckets_.growthBytes(e.f, e.h);
+      case Kind::kKeyBuckets:
+        return key_buckets_.growthBytes(e.f);
+      default:
+        return heap_.growthBytes();
+    }
   }
 
  private:
-  bool use_buckets_ = false;
+  Kind kind_ = Kind::kHeap;
   LazyQueue heap_;
   BucketQueue buckets_;
+  KeyBucketQueue key_buckets_;
 };
 
 }  // namespace detail

@@ -103,19 +103,29 @@ TEST(OpenQueue, PicksBucketsOnlyForKeysThatScaleToIntegers) {
   EXPECT_EQ(OpenQueue::bucketScaleFor(1.25), 4.0);
   EXPECT_EQ(OpenQueue::bucketScaleFor(2.3), 0.0);  // no power of two up to 64 makes it whole
   OpenQueue q;
-  q.reset(2.0);
-  EXPECT_TRUE(q.usesBuckets());
+  q.reset(OpenQueue::Kind::kBuckets, 2.0);
+  EXPECT_EQ(q.kind(), OpenQueue::Kind::kBuckets);
   q.push(QueueEntry{2.5, 7, 3});
   q.push(QueueEntry{1.0, 9, 4});
   q.push(QueueEntry{1.0, 8, 5});
   EXPECT_EQ(q.topKey(), 1.0);
   EXPECT_EQ(q.topId(), 5u);  // equal keys: the smaller h, as in the heap
-  q.reset(0.0);
-  EXPECT_FALSE(q.usesBuckets());
+  q.reset(OpenQueue::Kind::kHeap);
+  EXPECT_EQ(q.kind(), OpenQueue::Kind::kHeap);
   EXPECT_TRUE(q.empty());
   q.push(QueueEntry{2.3, 1, 5});
   q.push(QueueEntry{2.3, 0, 6});
   EXPECT_EQ(q.topId(), 6u);
+  q.reset(OpenQueue::Kind::kKeyBuckets, 2.0);
+  EXPECT_TRUE(q.empty());
+  q.push(QueueEntry{2.5, 7, 3});
+  q.push(QueueEntry{1.0, 8, 5});
+  q.push(QueueEntry{1.0, 9, 4});
+  EXPECT_EQ(q.topKey(), 1.0);
+  EXPECT_EQ(q.topId(), 4u);  // equal keys: the newest, whatever its h
+  std::size_t entries = 0;
+  q.forEach([&](double, StateId) { ++entries; });
+  EXPECT_EQ(entries, 3u);
 }
 
 }  // namespace

@@ -52,6 +52,10 @@ class SearchProblem {
   /// g + w * h stays below a few million: the search may then keep its queues as arrays of
   /// buckets indexed by key instead of heaps.
   virtual bool smallIntegerKeys() const { return false; }
+  /// True if edge costs, heuristic values and inflation bases are integers, of any size (the
+  /// lattice's millimetres): at a weight that makes every key a whole multiple of 1 / 64 the
+  /// search may keep its queues as one stack of states per key value, ties newest first.
+  virtual bool integerKeys() const { return smallIntegerKeys(); }
 
   /// Bytes the domain holds for its states (hash tables, state storage); counted against the
   /// search's memory cap together with the search's own arrays.

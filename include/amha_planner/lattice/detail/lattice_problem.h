@@ -53,6 +53,7 @@ class LatticeProblem final : public SearchProblem {
   /// the anchor): a weight inflates only the heuristics' heading-blind parts, the anchor's larger
   /// of its Euclidean and grid terms and each inadmissible heuristic's Dijkstra.
   bool hasInflationBases() const override { return bases_; }
+  bool integerKeys() const override { return true; }
   void bases(StateId s, HeuristicValue* b, std::size_t count) override {
     (void)s;
     for (std::size_t i = 0; i < count; ++i) b[i] = last_bases_[i];
