@@ -115,6 +115,15 @@ StateId LatticeProblem::id(int x, int y, int heading) {
   return slot;
 }
 
+void LatticeProblem::prefetchId(int x, int y, int heading) const {
+  if (x < 0 || y < 0 || x >= tiles_x_ * kTile) return;  // off the map: edgeCost refuses it
+  const std::size_t tile = static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile;
+  if (tile >= pages_.size() || pages_[tile] == nullptr) return;
+  __builtin_prefetch(pages_[tile] +
+                     static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ +
+                     heading);
+}
+
 void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   out.clear();
   if (s == virtual_start_) {  // a start in collision: on to each exit, at its escape cost
@@ -126,7 +135,12 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
     return;
   }
   const LatticeState st = state(s);
+  // The successors' index slots are cache misses in pages of 4 kB: start loading them all
+  // before the edges' collision tests, which have misses of their own.
   if (backward_) {
+    for (const LatticeAction* a : graph_.actionsInto(st.heading)) {
+      prefetchId(st.x - a->dx, st.y - a->dy, a->start_heading);
+    }
     for (const LatticeAction* a : graph_.actionsInto(st.heading)) {
       const int x = st.x - a->dx, y = st.y - a->dy;
       const Cost c = graph_.edgeCost(x, y, *a);  // checks that (x, y) and the motion are in the map
@@ -134,6 +148,10 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
       out.push_back(Edge{id(x, y, a->start_heading), c, graph_.actionIndex(a)});
     }
     return;
+  }
+  for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading);
+       ++a) {
+    prefetchId(st.x + a->dx, st.y + a->dy, a->end_heading);
   }
   for (const LatticeAction* a = graph_.actionsBegin(st.heading); a != graph_.actionsEnd(st.heading);
        ++a) {

@@ -83,6 +83,8 @@ class LatticeProblem final : public SearchProblem {
   std::size_t numStates() const { return keys_.size(); }
   /// The id of a state, creating it if new.
   StateId id(int x, int y, int heading);
+  /// Starts loading id(x, y, heading)'s index slot if its page exists (a hint, nothing more).
+  void prefetchId(int x, int y, int heading) const;
 
   /// Anchor value (admissible and consistent): with the grid anchor, the largest of
   /// floor(Euclidean + turning term), floor(grid + turning term), the block abstraction's
