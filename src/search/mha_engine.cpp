@@ -334,7 +334,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   w1_ = next_w1;
   w2_ = next_w2;
   for (std::size_t k = 0; k < members_.size(); ++k) clearAllOpen(members_[k]);
-  resetQueues();
+  resetQueues(denseKeys());
   for (std::size_t k = 0; k < members_.size(); ++k) {
     if (interrupted(k)) return false;
     const StateId s = members_[k];
@@ -366,11 +366,29 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   return true;
 }
 
-void MhaEngine::resetQueues() {
+void MhaEngine::resetQueues(bool dense_keys) {
   const double scale = integer_keys_ ? OpenQueue::bucketScaleFor(w1_) : 0.0;
   OpenQueue::Kind kind = OpenQueue::Kind::kHeap;
-  if (scale > 0) kind = small_keys_ ? OpenQueue::Kind::kBuckets : OpenQueue::Kind::kKeyBuckets;
+  if (scale > 0 && small_keys_) kind = OpenQueue::Kind::kBuckets;
+  if (scale > 0 && !small_keys_ && dense_keys) kind = OpenQueue::Kind::kKeyBuckets;
   for (auto& q : open_) q.reset(kind, scale);
+}
+
+bool MhaEngine::denseKeys() const {
+  // A key's stack takes a 64-byte block and the heads span the keys' range: with sparse keys
+  // (SBPL's cubicle, where a turn costs as much as 10 m of driving: 0.003-0.03 states per key)
+  // that is 3-4 times the heap's 16 bytes an entry, and no faster. The lattice maps of the
+  // Smac benchmark have 0.2-3 at the proof's start. The first iteration, from one state, has
+  // nothing to measure: it keeps the heap.
+  if (!integer_keys_ || small_keys_ || members_.size() < kMinDensityMembers) return false;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    const double f = keyAt(members_[k], kAnchor, w1_);
+    lo = std::min(lo, f);
+    hi = std::max(hi, f);
+  }
+  const double span = std::max(1.0, (hi - lo) * OpenQueue::bucketScaleFor(w1_) + 1.0);
+  return static_cast<double>(members_.size()) >= kMinKeyDensity * span;
 }
 
 void MhaEngine::clearClosed() {

@@ -58,7 +58,14 @@ class MhaEngine : public SearchBase {
   bool prepareNextIteration(double next_w1, double next_w2);  // false if a limit stopped it
   // The next iteration's weights (WeightSchedule), given the last solution's certified bound.
   void nextWeights(double certified, double* next_w1, double* next_w2);
-  void resetQueues();  // empties every queue and picks buckets or heaps for the current w1
+  // Empties every queue and picks buckets or heaps for the current w1; a bucket per key only if
+  // the keys are dense (denseKeys()).
+  void resetQueues(bool dense_keys = false);
+  // Whether members_ (the next iteration's OPEN_0) hold at least kMinKeyDensity states per key
+  // value between their smallest and largest key at the current w1.
+  bool denseKeys() const;
+  static constexpr double kMinKeyDensity = 0.1;
+  static constexpr std::size_t kMinDensityMembers = 256;
   void clearClosed();  // also empties INCONS
   // Collects OPEN_0 u INCONS (finite h0) into members_, in id order, and returns the minimum
   // of g + h0 over them: a lower bound on the optimal cost.
