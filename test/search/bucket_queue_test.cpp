@@ -11,6 +11,7 @@
 
 #include "../../src/search/bucket_queue.h"
 #include "../../src/search/open_queue.h"
+#include "queue_test_util.h"
 
 namespace amha {
 namespace detail {
@@ -18,18 +19,9 @@ namespace {
 
 TEST(BucketQueue, PopsInKeyThenHOrderNewestFirst) {
   BucketQueue q(2.0);  // keys in steps of 0.5
-  q.push(3.0, 2, 1);
-  q.push(1.5, 1, 2);
-  q.push(3.0, 1, 3);
-  q.push(1.5, 1, 4);
-  q.push(0.0, 0, 5);
-  q.push(3.0, 2, 6);
+  pushSampleEntries(q);
   ASSERT_EQ(q.size(), 6u);
-  std::vector<std::pair<double, StateId>> popped;
-  while (!q.empty()) {
-    popped.emplace_back(q.topKey(), q.topId());
-    q.pop();
-  }
+  const std::vector<std::pair<double, StateId>> popped = drainQueue(q);
   const std::vector<std::pair<double, StateId>> expected = {{0.0, 5}, {1.5, 4}, {1.5, 2},
                                                             {3.0, 3}, {3.0, 6}, {3.0, 1}};
   EXPECT_EQ(popped, expected);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../../src/search/key_bucket_queue.h"
+#include "queue_test_util.h"
 
 namespace amha {
 namespace detail {
@@ -17,17 +18,8 @@ namespace {
 
 TEST(KeyBucketQueue, PopsInKeyOrderNewestFirstWhateverTheH) {
   KeyBucketQueue q(2.0);  // keys in steps of 0.5
-  q.push(3.0, 2, 1);
-  q.push(1.5, 1, 2);
-  q.push(3.0, 1, 3);
-  q.push(1.5, 9, 4);
-  q.push(0.0, 0, 5);
-  q.push(3.0, 2, 6);
-  std::vector<std::pair<double, StateId>> popped;
-  while (!q.empty()) {
-    popped.emplace_back(q.topKey(), q.topId());
-    q.pop();
-  }
+  pushSampleEntries(q);
+  const std::vector<std::pair<double, StateId>> popped = drainQueue(q);
   const std::vector<std::pair<double, StateId>> expected = {{0.0, 5}, {1.5, 4}, {1.5, 2},
                                                             {3.0, 6}, {3.0, 3}, {3.0, 1}};
   EXPECT_EQ(popped, expected);
