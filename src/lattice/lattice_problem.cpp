@@ -96,7 +96,7 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph,
 LatticeProblem::~LatticeProblem() = default;
 
 StateId LatticeProblem::id(int x, int y, int heading) {
-  const std::size_t tile = static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile;
+  const std::size_t tile = tileOf(x, y);
   std::uint32_t* page = pages_[tile];
   if (page == nullptr) {
     if (slabs_.empty() || slab_used_ == kPagesPerSlab) {
@@ -107,8 +107,7 @@ StateId LatticeProblem::id(int x, int y, int heading) {
     std::fill(page, page + page_entries_, kNoState);
     pages_[tile] = page;
   }
-  std::uint32_t& slot =
-      page[static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading];
+  std::uint32_t& slot = page[slotInPage(x, y, heading)];
   if (slot == kNoState) {
     slot = keys_.add(x, y, heading);
   }
@@ -117,11 +116,9 @@ StateId LatticeProblem::id(int x, int y, int heading) {
 
 void LatticeProblem::prefetchId(int x, int y, int heading) const {
   if (x < 0 || y < 0 || x >= tiles_x_ * kTile) return;  // off the map: edgeCost refuses it
-  const std::size_t tile = static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile;
+  const std::size_t tile = tileOf(x, y);
   if (tile >= pages_.size() || pages_[tile] == nullptr) return;
-  __builtin_prefetch(pages_[tile] +
-                     static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ +
-                     heading);
+  __builtin_prefetch(pages_[tile] + slotInPage(x, y, heading));
 }
 
 void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {

@@ -36,6 +36,16 @@ class LazyQueue {
   bool empty() const { return store_.size() == kPad; }
   std::size_t size() const { return store_.size() - kPad; }
   const QueueEntry& top() const { return store_[kPad]; }
+  // The bucket queues' surface (OpenQueue dispatches to either kind alike).
+  double topKey() const { return top().f; }
+  StateId topId() const { return top().id; }
+  void push(double f, HeuristicValue h, StateId id) { push(QueueEntry{f, h, id}); }
+  bool tryPush(double f, HeuristicValue h, StateId id) { return tryPush(QueueEntry{f, h, id}); }
+  /// Calls fn(f, id) for every entry (members and stale ones).
+  template <typename F>
+  void forEach(F&& fn) const {
+    for (const QueueEntry& e : *this) fn(e.f, e.id);
+  }
 
   /// Raw entries (members and stale ones), in heap order.
   const QueueEntry* begin() const { return store_.data() + kPad; }

@@ -333,8 +333,18 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // reported, and nothing has changed since. clearClosed() empties INCONS at the end.
   w1_ = next_w1;
   w2_ = next_w2;
-  for (std::size_t k = 0; k < members_.size(); ++k) clearAllOpen(members_[k]);
-  resetQueues(denseKeys());
+  // The pass that takes the members out of their queues also measures their keys' span at the
+  // new w1, from which the queues' kind follows (denseKeys).
+  const bool measure = integer_keys_ && !small_keys_;  // only the per-key buckets need it
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (std::size_t k = 0; k < members_.size(); ++k) {
+    clearAllOpen(members_[k]);
+    if (!measure) continue;
+    const double f = keyAt(members_[k], kAnchor, w1_);
+    lo = std::min(lo, f);
+    hi = std::max(hi, f);
+  }
+  resetQueues(denseKeys(lo, hi));
   for (std::size_t k = 0; k < members_.size(); ++k) {
     if (interrupted(k)) return false;
     const StateId s = members_[k];
@@ -374,19 +384,13 @@ void MhaEngine::resetQueues(bool dense_keys) {
   for (auto& q : open_) q.reset(kind, scale);
 }
 
-bool MhaEngine::denseKeys() const {
+bool MhaEngine::denseKeys(double lo, double hi) const {
   // A key's stack takes a 64-byte block and the heads span the keys' range: with sparse keys
   // (SBPL's cubicle, where a turn costs as much as 10 m of driving: 0.003-0.03 states per key)
   // that is 3-4 times the heap's 16 bytes an entry, and no faster. The lattice maps of the
   // Smac benchmark have 0.2-3 at the proof's start. The first iteration, from one state, has
   // nothing to measure: it keeps the heap.
   if (!integer_keys_ || small_keys_ || members_.size() < kMinDensityMembers) return false;
-  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-  for (std::size_t k = 0; k < members_.size(); ++k) {
-    const double f = keyAt(members_[k], kAnchor, w1_);
-    lo = std::min(lo, f);
-    hi = std::max(hi, f);
-  }
   const double span = std::max(1.0, (hi - lo) * OpenQueue::bucketScaleFor(w1_) + 1.0);
   return static_cast<double>(members_.size()) >= kMinKeyDensity * span;
 }

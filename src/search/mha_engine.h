@@ -61,9 +61,9 @@ class MhaEngine : public SearchBase {
   // Empties every queue and picks buckets or heaps for the current w1; a bucket per key only if
   // the keys are dense (denseKeys()).
   void resetQueues(bool dense_keys = false);
-  // Whether members_ (the next iteration's OPEN_0) hold at least kMinKeyDensity states per key
-  // value between their smallest and largest key at the current w1.
-  bool denseKeys() const;
+  // Whether members_ (the next iteration's OPEN_0), whose keys at the current w1 lie in
+  // [lo, hi], hold at least kMinKeyDensity states per key value.
+  bool denseKeys(double lo, double hi) const;
   static constexpr double kMinKeyDensity = 0.1;
   static constexpr std::size_t kMinDensityMembers = 256;
   void clearClosed();  // also empties INCONS

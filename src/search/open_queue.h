@@ -22,6 +22,22 @@ class OpenQueue {
     kKeyBuckets,  // integer keys of any size, ties newest first (KeyBucketQueue)
   };
 
+ private:
+  // Calls fn on the queue of the current kind (self: *this, const or not). Defined before its
+  // callers, as its return type is deduced.
+  template <class Self, typename F>
+  static decltype(auto) visit(Self& self, F&& fn) {
+    switch (self.kind_) {
+      case Kind::kBuckets:
+        return fn(self.buckets_);
+      case Kind::kKeyBuckets:
+        return fn(self.key_buckets_);
+      default:
+        return fn(self.heap_);
+    }
+  }
+
+ public:
   /// The smallest scale in 1, 2, 4, ..., 64 that makes every key g + w1 * h an integer for
   /// integer g and h, or 0 if there is none (then only a heap can hold the keys).
   static double bucketScaleFor(double w1) {
@@ -42,78 +58,29 @@ class OpenQueue {
     kind_ = kind;
   }
   void clear() {
-    switch (kind_) {
-      case Kind::kHeap:
-        return heap_.clear();
-      case Kind::kBuckets:
-        return buckets_.clear();
-      case Kind::kKeyBuckets:
-        return key_buckets_.clear();
-    }
+    visit(*this, [](auto& q) { q.clear(); });
   }
 
   Kind kind() const { return kind_; }
   bool empty() const {
-    switch (kind_) {
-      case Kind::kBuckets:
-        return buckets_.empty();
-      case Kind::kKeyBuckets:
-        return key_buckets_.empty();
-      default:
-        return heap_.empty();
-    }
+    return visit(*this, [](const auto& q) { return q.empty(); });
   }
   double topKey() const {
-    switch (kind_) {
-      case Kind::kBuckets:
-        return buckets_.topKey();
-      case Kind::kKeyBuckets:
-        return key_buckets_.topKey();
-      default:
-        return heap_.top().f;
-    }
+    return visit(*this, [](const auto& q) { return q.topKey(); });
   }
   StateId topId() const {
-    switch (kind_) {
-      case Kind::kBuckets:
-        return buckets_.topId();
-      case Kind::kKeyBuckets:
-        return key_buckets_.topId();
-      default:
-        return heap_.top().id;
-    }
+    return visit(*this, [](const auto& q) { return q.topId(); });
   }
 
   void push(const QueueEntry& e) {
-    switch (kind_) {
-      case Kind::kHeap:
-        return heap_.push(e);
-      case Kind::kBuckets:
-        return buckets_.push(e.f, e.h, e.id);
-      case Kind::kKeyBuckets:
-        return key_buckets_.push(e.f, e.h, e.id);
-    }
+    visit(*this, [&](auto& q) { q.push(e.f, e.h, e.id); });
   }
   /// push(e) if that allocates nothing, else false (see growthBytes).
   bool tryPush(const QueueEntry& e) {
-    switch (kind_) {
-      case Kind::kBuckets:
-        return buckets_.tryPush(e.f, e.h, e.id);
-      case Kind::kKeyBuckets:
-        return key_buckets_.tryPush(e.f, e.h, e.id);
-      default:
-        return heap_.tryPush(e);
-    }
+    return visit(*this, [&](auto& q) { return q.tryPush(e.f, e.h, e.id); });
   }
   void pop() {
-    switch (kind_) {
-      case Kind::kHeap:
-        return heap_.pop();
-      case Kind::kBuckets:
-        return buckets_.pop();
-      case Kind::kKeyBuckets:
-        return key_buckets_.pop();
-    }
+    visit(*this, [](auto& q) { q.pop(); });
   }
 
   /// Adds without ordering; call restoreOrder() before the next top or pop.
@@ -127,15 +94,7 @@ class OpenQueue {
   /// Calls fn(f, id) for every entry (members and stale ones).
   template <typename F>
   void forEach(F&& fn) const {
-    switch (kind_) {
-      case Kind::kHeap:
-        for (const QueueEntry& e : heap_) fn(e.f, e.id);
-        return;
-      case Kind::kBuckets:
-        return buckets_.forEach(fn);
-      case Kind::kKeyBuckets:
-        return key_buckets_.forEach(fn);
-    }
+    visit(*this, [&](const auto& q) { q.forEach(fn); });
   }
 
   std::size_t memoryBytes() const {

@@ -126,6 +126,13 @@ class LatticeProblem final : public SearchProblem {
   std::vector<Edge> start_exits_;                //   and its edges
   std::vector<double> turn_euclid_, turn_grid_;  // turning terms per heading (cost units)
   static constexpr int kTile = 8;
+  // The paged index's layout (id, prefetchId): the page of cell (x, y), and the state's slot in it.
+  std::size_t tileOf(int x, int y) const {
+    return static_cast<std::size_t>(y / kTile) * tiles_x_ + x / kTile;
+  }
+  std::size_t slotInPage(int x, int y, int heading) const {
+    return static_cast<std::size_t>((y % kTile) * kTile + x % kTile) * headings_ + heading;
+  }
   static constexpr std::size_t kPagesPerSlab = 64;
 };
 
