@@ -102,6 +102,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/incremental_map_test.cpp
     test/lattice/heuristic_repair_test.cpp
     test/lattice/background_grids_test.cpp
+    test/lattice/grid_direction_test.cpp
     test/lattice/goal_tolerance_test.cpp
     test/lattice/any_goal_heading_test.cpp
     test/lattice/kinematic_table_test.cpp

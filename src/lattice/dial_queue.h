@@ -13,7 +13,9 @@ namespace detail {
 // O(1) per operation, which beats a heap when the steps are small (most maps).
 class DialQueue {
  public:
-  explicit DialQueue(std::uint32_t max_step) {
+  /// Every key pushed must lie in [k, k + max_step], k the last key popped, or `first` before
+  /// the first pop (an A*'s first key is its heuristic).
+  explicit DialQueue(std::uint32_t max_step, std::uint32_t first = 0) : cur_(first) {
     std::uint32_t n = 1;
     while (n <= max_step) n <<= 1;
     buckets_.resize(n);
@@ -36,7 +38,7 @@ class DialQueue {
     const std::vector<std::uint32_t>& b = buckets_[cur_ & mask_];
     return b.size() > ahead ? b[b.size() - 1 - ahead] : fallback;
   }
-  /// The key of the last pop (0 before the first): the largest, the queue being monotone.
+  /// The key of the last pop (`first` before the first): the largest, the queue being monotone.
   std::uint32_t lastPopped() const { return cur_; }
 
  private:

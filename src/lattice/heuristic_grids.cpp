@@ -1,4 +1,4 @@
-// Dijkstra grids from the goal with a radix heap, several in parallel.
+// Distance grids from the goal with a bucket queue or a radix heap, several in parallel.
 #include "amha_planner/lattice/detail/heuristic_grids.h"
 
 #include <algorithm>
@@ -21,7 +21,7 @@ namespace lattice {
 namespace {
 
 // Distances are stored atomically: a search may read a grid that a background thread still
-// completes (GridProgress). Relaxed: the order comes from GridProgress::settled.
+// completes (GridProgress). Relaxed: the order comes from GridProgress::final_bits.
 inline void storeDistance(std::uint32_t* dist, std::size_t i, std::uint32_t v) {
   __atomic_store_n(dist + i, v, __ATOMIC_RELAXED);
 }
@@ -43,17 +43,20 @@ void pause(unsigned& spins) {
 
 std::uint32_t GridProgress::read(const std::uint32_t* dist, std::size_t i) const {
   for (unsigned spins = 0;;) {
-    const std::uint32_t p = settled.load(std::memory_order_acquire);
-    const std::uint32_t v = __atomic_load_n(dist + i, __ATOMIC_RELAXED);
-    if (v <= p) return v;
-    if (abandoned.load(std::memory_order_acquire)) return p;
+    // Complete: a cell without its bit was never reached (kUnreachable).
+    if (isFinal(i) || complete.load(std::memory_order_acquire))
+      return __atomic_load_n(dist + i, __ATOMIC_RELAXED);
+    if (abandoned.load(std::memory_order_acquire)) {
+      const std::uint32_t f = frontier.load(std::memory_order_relaxed), e = direction.atIndex(i);
+      return f > e ? f - e : 0;
+    }
     pause(spins);
   }
 }
 
 bool GridProgress::waitComplete() const {
   for (unsigned spins = 0;;) {
-    if (settled.load(std::memory_order_acquire) == kUnreachable) return true;
+    if (complete.load(std::memory_order_acquire)) return true;
     if (abandoned.load(std::memory_order_acquire)) return false;
     pause(spins);
   }
@@ -241,16 +244,60 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   }
 }
 
-template <class Queue>
+namespace {
+
+/// Sets cell i's bit in GridProgress::final_bits (one writer: the thread computing the grid).
+inline void markFinal(std::uint8_t* bits, std::size_t i) {
+  std::uint8_t* b = bits + (i >> 3);
+  const std::uint8_t v = __atomic_load_n(b, __ATOMIC_RELAXED);
+  __atomic_store_n(b, static_cast<std::uint8_t>(v | (1u << (i & 7))), __ATOMIC_RELEASE);
+}
+
+inline bool isMarked(const std::uint8_t* bits, std::size_t i) {
+  return (bits[i >> 3] >> (i & 7)) & 1u;
+}
+
+}  // namespace
+
+GridDirection HeuristicGridBuilder::towardCell(const Kind& kind, std::int64_t px,
+                                               std::int64_t py) const {
+  GridDirection d;
+  d.x = px;
+  d.y = py;
+  d.padded_width = width_ + 4;
+  // The keys g + e stay below 32 bits if the distances do with room for the largest e.
+  const std::uint64_t cells = static_cast<std::uint64_t>(width_ + 4) * (height_ + 4) +
+                              static_cast<std::uint64_t>(width_ + height_ + 8);
+  if (cells * kind.max_step >= kUnreachable - 1) return d;
+  // per_cell * length <= step - 1/1024 for every move's cheapest step: ceil(per_cell * length)
+  // <= step with room for the rounding of the square roots (GridDirection's proof).
+  const std::vector<GridMove> moves = gridMoves(kind.move_offsets.size() == 16 ? 16 : 8);
+  double per_cell = std::numeric_limits<double>::infinity();
+  for (std::size_t m = 0; m < moves.size() && m < kind.move_offsets.size(); ++m)
+    per_cell = std::min(per_cell, (kind.step[m * 256] - 1.0 / 1024) / moves[m].length);
+  d.per_cell = std::isfinite(per_cell) ? std::max(0.0, per_cell) : 0.0;
+  d.knights = kind.move_offsets.size() == 16;
+  return d;
+}
+
+template <bool kTracked, class Queue>
 bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                                    const StopCondition* stop,
-                                    std::atomic<std::uint32_t>* settled) const {
+                                    const StopCondition* stop, GridProgress* progress,
+                                    std::uint32_t* max_g) const {
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
+  std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
   for (std::uint32_t pops = 0; !queue.empty();) {
-    const auto [d, i] = queue.pop();
-    if (settled != nullptr && d > 0) settled->store(d - 1, std::memory_order_release);
-    if (d != dist[i]) continue;
+    const auto [key, i] = queue.pop();
+    if constexpr (kTracked) {
+      // The first pop of a cell is its smallest key, its final distance; later ones are stale.
+      if (isMarked(bits, i)) continue;
+      markFinal(bits, i);
+    } else {
+      if (key != dist[i]) continue;
+    }
+    const std::uint32_t d = dist[i];
+    if (max_g != nullptr) *max_g = std::max(*max_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
     for (std::size_t m = 0; m < nm; ++m) {
       const std::uint32_t w = moveCost(kind, i, m);
@@ -262,7 +309,8 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
           std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
       if (v < dist[j]) {
         storeDistance(dist, j, v);
-        queue.push(v, static_cast<std::uint32_t>(j));
+        queue.push(kTracked ? v + progress->direction.atIndex(j) : v,
+                   static_cast<std::uint32_t>(j));
       }
     }
   }
@@ -276,10 +324,10 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
 // whose segments cross two cells between their ends, e.g. (1,0) and (1,1) for (2,1)).
 constexpr std::size_t kPrefetchAhead = 4;
 
-template <bool kKnights, class Queue>
+template <bool kKnights, bool kTracked, class Queue>
 bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                                            const StopCondition* stop,
-                                            std::atomic<std::uint32_t>* settled) const {
+                                            const StopCondition* stop, GridProgress* progress,
+                                            std::uint32_t* max_g) const {
   const std::uint8_t* __restrict level = kind.level.data();
   const std::int64_t pw = width_ + 4;
   const std::uint32_t* step = kind.step.data();
@@ -291,10 +339,12 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
   const std::uint32_t* s_nw = step + 5 * 256;
   const std::uint32_t* s_n = step + 6 * 256;
   const std::uint32_t* s_ne = step + 7 * 256;
+  std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
+  const GridDirection toward = kTracked ? progress->direction : GridDirection();
   for (std::uint32_t pops = 0; !queue.empty();) {
     // Not a structured binding: clang before 16 cannot capture one in the lambda below.
     const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
-    const std::uint32_t d = top.first, i = top.second;
+    const std::uint32_t key = top.first, i = top.second;
     // Cells of one key lie scattered along the wavefront: load the distance and the level
     // rows of the cell popped a few pops from now (the stale check below was a fifth of the
     // time on large cost maps).
@@ -305,47 +355,66 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       __builtin_prefetch(dist + a + pw);
       __builtin_prefetch(level + a - pw);
       __builtin_prefetch(level + a + pw);
+      if constexpr (kTracked) __builtin_prefetch(bits + (a >> 3));
     }
-    if (settled != nullptr && d > 0) settled->store(d - 1, std::memory_order_release);
-    if (d != dist[i]) continue;
+    if constexpr (kTracked) {
+      // The first pop of a cell is its smallest key, its final distance; later ones are stale.
+      if (isMarked(bits, i)) continue;
+      markFinal(bits, i);
+    } else {
+      if (key != dist[i]) continue;
+    }
+    const std::uint32_t d = dist[i];
+    if (max_g != nullptr) *max_g = std::max(*max_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
+    // The popped cell's padded coordinates, for the keys toward the search's start.
+    const std::uint32_t upw = static_cast<std::uint32_t>(pw);  // a 32-bit division is faster
+    const std::int64_t ix = kTracked ? i % upw : 0;
+    const std::int64_t iy = kTracked ? i / upw : 0;
     const unsigned c0 = level[i];
     const unsigned lw = level[i - 1], le = level[i + 1], ls = level[i - pw], ln = level[i + pw];
-    auto relax = [&](std::size_t j, unsigned c, const std::uint32_t* s) {
+    // Inlined by force (and the moves below): GCC kept some out of line.
+    auto relax = [&](std::size_t j, unsigned c, const std::uint32_t* s, int dx, int dy)
+        __attribute__((always_inline)) {
       // Saturating: min(distance, kUnreachable - 1) is still admissible and consistent.
       const std::uint32_t nd = static_cast<std::uint32_t>(
           std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + s[c], kUnreachable - 1));
       if (nd < dist[j]) {
         storeDistance(dist, j, nd);
-        queue.push(nd, static_cast<std::uint32_t>(j));
+        queue.push(kTracked ? nd + toward.at(ix + dx, iy + dy) : nd, static_cast<std::uint32_t>(j));
       }
     };
-    if (lw != 255) relax(i - 1, std::max(c0, lw), s_w);
-    if (le != 255) relax(i + 1, std::max(c0, le), s_e);
-    if (ls != 255) relax(i - pw, std::max(c0, ls), s_s);
-    if (ln != 255) relax(i + pw, std::max(c0, ln), s_n);
+    if (lw != 255) relax(i - 1, std::max(c0, lw), s_w, -1, 0);
+    if (le != 255) relax(i + 1, std::max(c0, le), s_e, 1, 0);
+    if (ls != 255) relax(i - pw, std::max(c0, ls), s_s, 0, -1);
+    if (ln != 255) relax(i + pw, std::max(c0, ln), s_n, 0, 1);
     // Diagonals (GridMove::either_side): one passable side cell suffices, the cheaper counts;
     // 255 (blocked) is above every cost class, so min() picks a passable side if there is one.
-    auto diagonal = [&](std::size_t j, unsigned side_a, unsigned side_b, const std::uint32_t* s) {
+    auto diagonal = [&](int dx, int dy, unsigned side_a, unsigned side_b, const std::uint32_t* s)
+        __attribute__((always_inline)) {
       const unsigned side = std::min(side_a, side_b);
       if (side == 255) return;
+      const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + dy * pw + dx);
       const unsigned l = level[j];
-      if (l != 255) relax(j, std::max({c0, side, l}), s);
+      if (l != 255) relax(j, std::max({c0, side, l}), s, dx, dy);
     };
-    diagonal(i - pw - 1, ls, lw, s_sw);
-    diagonal(i - pw + 1, ls, le, s_se);
-    diagonal(i + pw - 1, ln, lw, s_nw);
-    diagonal(i + pw + 1, ln, le, s_ne);
+    diagonal(-1, -1, ls, lw, s_sw);
+    diagonal(1, -1, ls, le, s_se);
+    diagonal(-1, 1, ln, lw, s_nw);
+    diagonal(1, 1, ln, le, s_ne);
     if constexpr (kKnights) {
       // Both cells between the ends are required (255 stays above every class, as above).
       const unsigned lsw = level[i - pw - 1], lse = level[i - pw + 1], lnw = level[i + pw - 1],
                      lne = level[i + pw + 1];
-      auto knight = [&](std::int64_t dx, std::int64_t dy, unsigned a, unsigned b, int m) {
+      auto knight = [&](std::int64_t dx, std::int64_t dy, unsigned a, unsigned b, int m)
+          __attribute__((always_inline)) {
         const unsigned mid = std::max(a, b);
         if (mid == 255) return;
         const std::size_t j = static_cast<std::size_t>(static_cast<std::int64_t>(i) + dy * pw + dx);
         const unsigned l = level[j];
-        if (l != 255) relax(j, std::max({c0, mid, l}), step + m * 256);
+        if (l != 255)
+          relax(j, std::max({c0, mid, l}), step + m * 256, static_cast<int>(dx),
+                static_cast<int>(dy));
       };
       knight(2, 1, le, lne, 8);
       knight(1, 2, ln, lne, 9);
@@ -373,23 +442,38 @@ bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, Di
   const std::uint32_t goal = static_cast<std::uint32_t>(paddedIndex(width_, gx, gy));
   const bool passable = kind.level[goal] != 255;
   if (passable) dist[goal] = 0;
-  if (progress != nullptr) progress->filled.store(true, std::memory_order_release);
+  if (progress != nullptr) {
+    progress->final_bits.assign(total / 8 + 1, 0);
+    progress->filled.store(true, std::memory_order_release);
+  }
   if (!passable) return true;
-  std::atomic<std::uint32_t>* settled = progress != nullptr ? &progress->settled : nullptr;
   const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
-  // Every finite distance is popped, the largest last.
+  // Every finite distance is popped (max_g: the largest).
   auto search = [&](auto& queue) {
-    queue.push(0, goal);
-    const bool complete = eight     ? dijkstraUnrolled<false>(kind, dist, queue, stop, settled)
-                          : sixteen ? dijkstraUnrolled<true>(kind, dist, queue, stop, settled)
-                                    : dijkstra(kind, dist, queue, stop, settled);
-    grid.max_distance = queue.lastPopped();
+    std::uint32_t max_g = 0;
+    bool complete = false;
+    if (progress != nullptr) {
+      queue.push(progress->direction.atIndex(goal), goal);
+      complete = eight ? dijkstraUnrolled<false, true>(kind, dist, queue, stop, progress, &max_g)
+                 : sixteen ? dijkstraUnrolled<true, true>(kind, dist, queue, stop, progress, &max_g)
+                           : dijkstra<true>(kind, dist, queue, stop, progress, &max_g);
+      if (!complete) progress->frontier.store(queue.lastPopped(), std::memory_order_relaxed);
+    } else {
+      queue.push(0, goal);
+      complete = eight ? dijkstraUnrolled<false, false>(kind, dist, queue, stop, nullptr, &max_g)
+                 : sixteen ? dijkstraUnrolled<true, false>(kind, dist, queue, stop, nullptr, &max_g)
+                           : dijkstra<false>(kind, dist, queue, stop, nullptr, &max_g);
+    }
+    grid.max_distance = max_g;
     return complete;
   };
-  // Dial's queue needs every key within max_step of the current one, so it is used only when
-  // no distance can reach the saturation value.
-  if (kind.max_step < 4096 && !canSaturate(kind)) {
-    detail::DialQueue q(kind.max_step);
+  // Dial's queue needs every key within its span of the current one: a step (Dijkstra's order),
+  // a step and the change of e along it, at most another step (GridDirection), so it is used
+  // only when no distance can reach the saturation value.
+  const std::uint32_t span =
+      progress != nullptr && progress->direction.per_cell > 0 ? 2 * kind.max_step : kind.max_step;
+  if (span < 8192 && !canSaturate(kind)) {
+    detail::DialQueue q(span, progress != nullptr ? progress->direction.atIndex(goal) : 0);
     return search(q);
   }
   detail::RadixHeap q;
@@ -401,7 +485,7 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   const bool complete = dijkstraFromGoal(kind, gx, gy, grid, stop, progress);
   if (progress != nullptr) {
     if (complete) {
-      progress->settled.store(kUnreachable, std::memory_order_release);
+      progress->complete.store(true, std::memory_order_release);
     } else {
       progress->abandoned.store(true, std::memory_order_release);
     }
@@ -515,9 +599,9 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   };
   detail::RadixHeap queue;
   auto propagate = [&](detail::RadixHeap& q) {
-    return nm == 8    ? dijkstraUnrolled<false>(kind, dist, q, stop)
-           : nm == 16 ? dijkstraUnrolled<true>(kind, dist, q, stop)
-                      : dijkstra(kind, dist, q, stop);
+    return nm == 8    ? dijkstraUnrolled<false, false>(kind, dist, q, stop)
+           : nm == 16 ? dijkstraUnrolled<true, false>(kind, dist, q, stop)
+                      : dijkstra<false>(kind, dist, q, stop);
   };
   if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1),
                                along(-1), propagate, stop, queue)) {
@@ -639,8 +723,11 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
   // The search may start early if other threads can complete the grids meanwhile.
   const bool early = search_start != nullptr && !job->old && threads >= 2 && grid_tasks > 0;
   if (early) {
+    const std::int64_t sx = search_start->first + 2, sy = search_start->second + 2;
     for (int k : tasks) {
-      if (k >= 0) result[k]->progress = std::make_shared<GridProgress>();
+      if (k < 0) continue;
+      result[k]->progress = std::make_shared<GridProgress>();
+      result[k]->progress->direction = towardCell(kinds_[k], sx, sy);
     }
     // The background threads take the grids; this thread the abstraction, then helps.
     const std::size_t helpers = std::min<std::size_t>(threads - 1, grid_tasks);
@@ -670,7 +757,7 @@ std::shared_ptr<const GoalHeuristics> HeuristicGridBuilder::computeOrRepair(
         if (k < 0) return true;
         const GridProgress& p = *result[k]->progress;
         return p.filled.load(std::memory_order_acquire) &&
-               p.settledAt(result[k]->dist.data(), first);
+               (p.isFinal(first) || p.complete.load(std::memory_order_acquire));
       });
     };
     for (unsigned spins = 0;; pause(spins)) {

@@ -1,13 +1,14 @@
-// 2-D Dijkstra grids from the goal, the heuristics of the lattice search:
+// 2-D distance grids from the goal, the heuristics of the lattice search:
 //  - the anchor's grid: an 8-connected, cost-aware Dijkstra over the cells the robot's centre
 //    may occupy, with step costs scaled so that it is a relaxation of the lattice (admissible
 //    and consistent, see LatticeGraph::gridAnchorUnitsPerCell);
 //  - the inadmissible ones (the paper's): an 8-connected Dijkstra for a point robot, and the
 //    same on free space opened by the inscribed and by the circumscribed radius.
-// Costs are integers, so a radix heap (monotone integer queue) replaces the binary heap; the
-// grids are independent and computed in parallel threads. Given the cell where the search
-// begins, compute() returns once that cell's distance is final and leaves the rest of each grid
-// to a background thread (GridProgress): the search starts while the grid is completed.
+// Costs are integers, so a bucket queue or a radix heap (monotone integer queues) replaces the
+// binary heap; the grids are independent and computed in parallel threads. Given the cell where
+// the search begins, compute() returns once that cell's distance is final and leaves the rest of
+// each grid to a background thread (GridProgress), which computes it as an A* toward that cell
+// (GridDirection): the search starts after a fraction of the map, while the grid is completed.
 #pragma once
 
 #include <atomic>
@@ -37,26 +38,62 @@ constexpr std::uint32_t kUnreachable = 0xFFFFFFFFu;
 /// keeps the rounding loss small); heuristic value = grid value / kGridFraction.
 constexpr std::uint32_t kGridFraction = 4;
 
-/// How far a grid that a background thread still completes is final. The Dijkstra stores
-/// distances atomically and, on popping key d, publishes settled = d - 1: every key up to d - 1
-/// has been popped and its moves relaxed, so every cell whose distance is at most d - 1 holds
-/// it (its predecessor on a shortest path had a key no larger, popped before). A reader loads
-/// `settled` (acquire), then the cell: a value v <= settled is final (a tentative value is never
-/// below the final one, and a final one <= settled was stored before the publication); a larger
-/// value is waited for.
-struct GridProgress {
-  std::atomic<bool> filled{false};        ///< the grid's cells exist (release: readers may look)
-  std::atomic<std::uint32_t> settled{0};  ///< kUnreachable once the grid is complete
-  /// Stopped before completion (the builder was destroyed first): cells past `settled` are not
-  /// final, and read() returns `settled` for them (a lower bound of their distance).
-  std::atomic<bool> abandoned{false};
+/// The order in which a grid handed out early is computed: an A* from the goal toward the
+/// search's first cell, key g + e(cell), so that the first cell is final after far fewer cells
+/// than a Dijkstra's disc (Smac's obstacle heuristic does the same). e is the length of the
+/// shortest obstacle-free walk of the grid's moves (8- or 16-connected) to that cell, in padded
+/// coordinates, times `per_cell`, rounded down: a metric of the move graph, so
+/// |walk(a) - walk(b)| <= length for a move between a and b, and no square root to take. With
+/// per_cell * length <= the cheapest step of every move (HeuristicGridBuilder::towardCell),
+///   e(a) <= floor(per_cell * walk(b) + per_cell * length) <= e(b) + ceil(per_cell * length)
+///        <= e(b) + step
+/// for every move between a and b, either way: e is consistent, the keys never decrease, and a
+/// cell's distance is final when it is popped. per_cell = 0 is Dijkstra's order.
+struct GridDirection {
+  std::int64_t x = 0, y = 0;  ///< the padded cell toward which the grid is computed
+  std::int64_t padded_width = 0;
+  double per_cell = 0.0;
+  bool knights = false;  ///< 16-connected moves (else 8)
+  std::uint32_t at(std::int64_t px, std::int64_t py) const {
+    const std::int64_t ax = px > x ? px - x : x - px, ay = py > y ? py - y : y - py;
+    const double hi = static_cast<double>(ax > ay ? ax : ay);
+    const double lo = static_cast<double>(ax > ay ? ay : ax);
+    constexpr double kSqrt2 = 1.4142135623730951, kSqrt5 = 2.23606797749979;
+    // Along the two moves either side of the direction: (1,0) and (1,1); with knights (1,0) and
+    // (2,1) up to a slope of 1/2, then (2,1) and (1,1).
+    const double walk = !knights       ? lo * kSqrt2 + (hi - lo)
+                        : 2 * lo <= hi ? lo * kSqrt5 + (hi - 2 * lo)
+                                       : (hi - lo) * kSqrt5 + (2 * lo - hi) * kSqrt2;
+    return static_cast<std::uint32_t>(per_cell * walk);
+  }
+  std::uint32_t atIndex(std::size_t i) const {
+    const std::int64_t w = padded_width;
+    return at(static_cast<std::int64_t>(i) % w, static_cast<std::int64_t>(i) / w);
+  }
+};
 
-  /// Whether cell i's distance is final; needs `filled` (before it, dist may be reallocated).
-  bool settledAt(const std::uint32_t* dist, std::size_t i) const {
-    const std::uint32_t p = settled.load(std::memory_order_acquire);
-    return __atomic_load_n(dist + i, __ATOMIC_RELAXED) <= p;
+/// Which cells of a grid that a background thread still completes are final: one bit per padded
+/// cell, set (release) when the cell is popped; its distance, stored before, never changes after.
+/// A reader loads the bit (acquire), then the cell.
+struct GridProgress {
+  std::atomic<bool> filled{false};    ///< the cells and bits exist (release: readers may look)
+  std::atomic<bool> complete{false};  ///< every cell is final (unreachable ones never get a bit)
+  /// Stopped before completion (the builder was destroyed first): read() returns a lower bound
+  /// for the cells that are not final.
+  std::atomic<bool> abandoned{false};
+  /// The last key popped, stored before `abandoned`: a cell not popped then has g + e >= it.
+  std::atomic<std::uint32_t> frontier{0};
+  std::vector<std::uint8_t> final_bits;  ///< written before `filled`, then bit by bit
+  GridDirection direction;               ///< set before `filled`
+
+  /// Whether cell i's distance is final; needs `filled`.
+  bool isFinal(std::size_t i) const {
+    return (__atomic_load_n(final_bits.data() + (i >> 3), __ATOMIC_ACQUIRE) >> (i & 7)) & 1u;
   }
   /// Cell i's final distance, waiting for it (the background thread makes progress on its own).
+  /// Abandoned, a cell that is not final reads as max(0, frontier - e(cell)): every such cell
+  /// has distance >= that, and, e being consistent both ways, frontier - e is consistent, so the
+  /// grid stays a consistent lower bound (min(distance, frontier - e), then max with 0).
   std::uint32_t read(const std::uint32_t* dist, std::size_t i) const;
   /// Waits until the grid is complete; false if it was abandoned.
   bool waitComplete() const;
@@ -82,15 +119,12 @@ struct DistanceGrid {
     const std::size_t i = paddedIndex(width, x, y);
     if (!progress) return dist[i];
     // Inline while the cell is final (GridProgress); out of line only to wait.
-    const std::uint32_t p = progress->settled.load(std::memory_order_acquire);
-    const std::uint32_t v = __atomic_load_n(dist.data() + i, __ATOMIC_RELAXED);
-    return v <= p ? v : progress->read(dist.data(), i);
+    if (progress->isFinal(i)) return __atomic_load_n(dist.data() + i, __ATOMIC_RELAXED);
+    return progress->read(dist.data(), i);
   }
   /// Whether every cell is final (then read them with atComplete()): no progress, or its
   /// Dijkstra has ended (an acquire, so that the plain reads after it see the distances).
-  bool complete() const {
-    return !progress || progress->settled.load(std::memory_order_acquire) == kUnreachable;
-  }
+  bool complete() const { return !progress || progress->complete.load(std::memory_order_acquire); }
   /// A cell of a grid that complete() said is complete, without at()'s check.
   std::uint32_t atComplete(int x, int y) const { return dist[paddedIndex(width, x, y)]; }
 };
@@ -218,16 +252,20 @@ class HeuristicGridBuilder {
   bool canSaturate(const Kind& kind) const;
   /// The cost of move m from padded cell i (dijkstra()'s relaxation), kUnreachable if blocked.
   std::uint32_t moveCost(const Kind& kind, std::size_t i, std::size_t m) const;
+  /// The order toward padded cell (px, py) for kind's grid (GridDirection): per_cell from the
+  /// cheapest steps, or 0 (Dijkstra's order) if a key g + e could exceed 32 bits.
+  GridDirection towardCell(const Kind& kind, std::int64_t px, std::int64_t py) const;
   // Dijkstra from the cells already in `queue` (with their distances in dist); stores distances
-  // atomically and, with `settled`, publishes how far they are final (GridProgress).
-  template <class Queue>
+  // atomically; *max_g (if given) receives the largest distance popped. With `progress`
+  // (kTracked): the queue's keys are g + e (progress->direction), a popped cell's bit is set.
+  template <bool kTracked, class Queue>
   bool dijkstra(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop,
-                std::atomic<std::uint32_t>* settled = nullptr) const;
+                GridProgress* progress = nullptr, std::uint32_t* max_g = nullptr) const;
   /// The 8-connected (kKnights false) and 16-connected moves, unrolled.
-  template <bool kKnights, class Queue>
+  template <bool kKnights, bool kTracked, class Queue>
   bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
-                        const StopCondition* stop,
-                        std::atomic<std::uint32_t>* settled = nullptr) const;
+                        const StopCondition* stop, GridProgress* progress = nullptr,
+                        std::uint32_t* max_g = nullptr) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;
