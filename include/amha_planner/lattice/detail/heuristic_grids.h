@@ -228,9 +228,11 @@ class HeuristicGridBuilder {
       const StopCondition* stop, std::shared_ptr<const GoalHeuristics> old,
       const std::vector<CellRect>* changed, const std::pair<int, int>* search_start) const;
   /// Task k of a job (-1: the block abstraction; else grid kind k); false if stopped.
-  bool runTask(Job& job, int k, const StopCondition* stop) const;
+  /// `complete_here`: the calling thread returns the grid only once complete (it drops the
+  /// grid's progress and computes it in Dijkstra's order).
+  bool runTask(Job& job, int k, const StopCondition* stop, bool complete_here = false) const;
   /// Runs the job's tasks from its queue until none is left.
-  void work(Job& job, const StopCondition* stop) const;
+  void work(Job& job, const StopCondition* stop, bool complete_here = false) const;
   /// Joins the background threads that have finished (all of them, and stopping them first,
   /// if `all`).
   void reapBackground(bool all) const;
