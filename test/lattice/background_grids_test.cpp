@@ -44,13 +44,15 @@ std::vector<std::pair<int, int>> farthestFirst(const DistanceGrid& full) {
   return cells;
 }
 
-TEST(BackgroundThreadGrids, EveryCellReadsAsTheCompleteGrid) {
+// With one grid for the one helper it is an A* toward the start; with more grids than helpers
+// (the anchor's and the openings'), Dijkstras (the calling thread completes the rest first).
+void everyCellReadsAsTheCompleteGrid(const LatticeConfig& config, bool toward_start) {
   for (unsigned seed : {1u, 2u, 3u}) {
     auto map = test::randomMap(300, 220, 0.05, seed, 60, seed == 3 ? 0 : 120);
     const std::pair<int, int> goal{40, 30}, start{260, 190};
     map->cost[goal.second * map->width + goal.first] = 0;
     map->cost[start.second * map->width + start.first] = 0;
-    LatticeGraph g(map, roundRobot());
+    LatticeGraph g(map, config);
     HeuristicGridBuilder b(g);
     const auto full = b.compute(goal.first, goal.second, 0, true, 2);
     const auto early = b.compute(goal.first, goal.second, 0, true, 2, false, nullptr, &start);
@@ -66,7 +68,7 @@ TEST(BackgroundThreadGrids, EveryCellReadsAsTheCompleteGrid) {
         const std::size_t i = paddedIndex(e.width, start.first, start.second);
         EXPECT_TRUE(e.progress->isFinal(i) || e.progress->complete.load())
             << "seed " << seed << " grid " << k;
-        EXPECT_GT(e.progress->direction.per_cell, 0.0) << "an A* toward the start";
+        EXPECT_EQ(e.progress->direction.per_cell > 0.0, toward_start) << "seed " << seed;
       }
     }
     EXPECT_GT(handed_early, 0) << "two threads and a search start: the grids go to a helper";
@@ -93,6 +95,13 @@ TEST(BackgroundThreadGrids, EveryCellReadsAsTheCompleteGrid) {
       }
     }
   }
+}
+
+TEST(BackgroundThreadGrids, EveryCellReadsAsTheCompleteGrid) {
+  everyCellReadsAsTheCompleteGrid(roundRobot(), false);
+  LatticeConfig one_grid = roundRobot();
+  one_grid.heuristics.num_inadmissible = 0;
+  everyCellReadsAsTheCompleteGrid(one_grid, true);
 }
 
 // A large open map, the search starting next to the goal: compute() returns long before the
