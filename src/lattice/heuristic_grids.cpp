@@ -257,6 +257,20 @@ inline bool isMarked(const std::uint8_t* bits, std::size_t i) {
   return (bits[i >> 3] >> (i & 7)) & 1u;
 }
 
+/// Whether popping (key, i) settles cell i, not a stale entry; tracked, it marks i final. The
+/// first pop of a cell is its smallest key, hence (keys consistent) its final distance.
+template <bool kTracked>
+inline bool settles(std::uint8_t* bits, const std::uint32_t* dist, std::uint32_t key,
+                    std::uint32_t i) {
+  if constexpr (kTracked) {
+    if (isMarked(bits, i)) return false;
+    markFinal(bits, i);
+    return true;
+  } else {
+    return key == dist[i];
+  }
+}
+
 }  // namespace
 
 GridDirection HeuristicGridBuilder::towardCell(const Kind& kind, std::int64_t px,
@@ -289,13 +303,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
   std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [key, i] = queue.pop();
-    if constexpr (kTracked) {
-      // The first pop of a cell is its smallest key, its final distance; later ones are stale.
-      if (isMarked(bits, i)) continue;
-      markFinal(bits, i);
-    } else {
-      if (key != dist[i]) continue;
-    }
+    if (!settles<kTracked>(bits, dist, key, i)) continue;
     const std::uint32_t d = dist[i];
     if (max_g != nullptr) *max_g = std::max(*max_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
@@ -358,13 +366,7 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       __builtin_prefetch(level + a + pw);
       if constexpr (kTracked) __builtin_prefetch(bits + (a >> 3));
     }
-    if constexpr (kTracked) {
-      // The first pop of a cell is its smallest key, its final distance; later ones are stale.
-      if (isMarked(bits, i)) continue;
-      markFinal(bits, i);
-    } else {
-      if (key != dist[i]) continue;
-    }
+    if (!settles<kTracked>(bits, dist, key, i)) continue;
     const std::uint32_t d = dist[i];
     if (max_g != nullptr) *max_g = std::max(*max_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
