@@ -215,6 +215,7 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
   kind.step.assign(moves.size() * 256, 0);
   kind.max_step = 0;
   kind.min_step = std::numeric_limits<std::uint32_t>::max();
+  kind.walk_per_cell = std::numeric_limits<double>::infinity();
   kind.reach = 0;
   for (std::size_t m = 0; m < moves.size(); ++m) {
     const GridMove& mv = moves[m];
@@ -241,7 +242,12 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
         kind.min_step = std::min(kind.min_step, kind.step[m * 256 + c]);
       }
     }
+    // per_cell * length <= step - 1/1024 for every move's cheapest step: ceil(per_cell * length)
+    // <= step with room for the rounding of the square roots (GridDirection's proof).
+    kind.walk_per_cell =
+        std::min(kind.walk_per_cell, (kind.step[m * 256] - 1.0 / 1024) / mv.length);
   }
+  kind.walk_per_cell = std::isfinite(kind.walk_per_cell) ? std::max(0.0, kind.walk_per_cell) : 0.0;
 }
 
 namespace {
@@ -283,13 +289,7 @@ GridDirection HeuristicGridBuilder::towardCell(const Kind& kind, std::int64_t px
   const std::uint64_t cells = static_cast<std::uint64_t>(width_ + 4) * (height_ + 4) +
                               static_cast<std::uint64_t>(width_ + height_ + 8);
   if (cells * kind.max_step >= kUnreachable - 1) return d;
-  // per_cell * length <= step - 1/1024 for every move's cheapest step: ceil(per_cell * length)
-  // <= step with room for the rounding of the square roots (GridDirection's proof).
-  const std::vector<GridMove> moves = gridMoves(kind.move_offsets.size() == 16 ? 16 : 8);
-  double per_cell = std::numeric_limits<double>::infinity();
-  for (std::size_t m = 0; m < moves.size() && m < kind.move_offsets.size(); ++m)
-    per_cell = std::min(per_cell, (kind.step[m * 256] - 1.0 / 1024) / moves[m].length);
-  d.per_cell = std::isfinite(per_cell) ? std::max(0.0, per_cell) : 0.0;
+  d.per_cell = kind.walk_per_cell;
   d.knights = kind.move_offsets.size() == 16;
   return d;
 }
@@ -301,12 +301,18 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
   std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
+  // The largest distance settled, kept in a register (stores to dist could alias *max_g).
+  std::uint32_t top_g = 0;
+  auto done = [&](bool complete) {
+    if (max_g != nullptr) *max_g = std::max(*max_g, top_g);
+    return complete;
+  };
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [key, i] = queue.pop();
     if (!settles<kTracked>(bits, dist, key, i)) continue;
     const std::uint32_t d = dist[i];
-    if (max_g != nullptr) *max_g = std::max(*max_g, d);
-    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
+    top_g = std::max(top_g, d);
+    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return done(false);
     for (std::size_t m = 0; m < nm; ++m) {
       const std::uint32_t w = moveCost(kind, i, m);
       if (w == kUnreachable) continue;
@@ -322,7 +328,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
       }
     }
   }
-  return true;
+  return done(true);
 }
 
 // The 8- and 16-connected cases, unrolled: the eight neighbours are read once and serve as the
@@ -350,6 +356,12 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
   std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
   const GridDirection toward = kTracked ? progress->direction : GridDirection();
   const bool directed = kTracked && toward.per_cell > 0;  // else Dijkstra's order, no e
+  // The largest distance settled, kept in a register (stores to dist could alias *max_g).
+  std::uint32_t top_g = 0;
+  auto done = [&](bool complete) {
+    if (max_g != nullptr) *max_g = std::max(*max_g, top_g);
+    return complete;
+  };
   for (std::uint32_t pops = 0; !queue.empty();) {
     // Not a structured binding: clang before 16 cannot capture one in the lambda below.
     const std::pair<std::uint32_t, std::uint32_t> top = queue.pop();
@@ -368,8 +380,8 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
     }
     if (!settles<kTracked>(bits, dist, key, i)) continue;
     const std::uint32_t d = dist[i];
-    if (max_g != nullptr) *max_g = std::max(*max_g, d);
-    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return false;
+    top_g = std::max(top_g, d);
+    if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return done(false);
     // The popped cell's padded coordinates, for the keys toward the search's start.
     const std::uint32_t upw = static_cast<std::uint32_t>(pw);  // a 32-bit division is faster
     const std::int64_t ix = directed ? i % upw : 0;
@@ -429,7 +441,21 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       knight(2, -1, le, lse, 15);
     }
   }
-  return true;
+  return done(true);
+}
+
+template <bool kTracked, class Queue>
+bool HeuristicGridBuilder::propagate(const Kind& kind, std::uint32_t* dist, Queue& queue,
+                                     const StopCondition* stop, GridProgress* progress,
+                                     std::uint32_t* max_g) const {
+  switch (kind.move_offsets.size()) {
+    case 8:
+      return dijkstraUnrolled<false, kTracked>(kind, dist, queue, stop, progress, max_g);
+    case 16:
+      return dijkstraUnrolled<true, kTracked>(kind, dist, queue, stop, progress, max_g);
+    default:
+      return dijkstra<kTracked>(kind, dist, queue, stop, progress, max_g);
+  }
 }
 
 bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, DistanceGrid& grid,
@@ -450,22 +476,17 @@ bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, Di
     progress->filled.store(true, std::memory_order_release);
   }
   if (!passable) return true;
-  const bool eight = kind.move_offsets.size() == 8, sixteen = kind.move_offsets.size() == 16;
   // Every finite distance is popped (max_g: the largest).
   auto search = [&](auto& queue) {
     std::uint32_t max_g = 0;
     bool complete = false;
     if (progress != nullptr) {
       queue.push(progress->direction.atIndex(goal), goal);
-      complete = eight ? dijkstraUnrolled<false, true>(kind, dist, queue, stop, progress, &max_g)
-                 : sixteen ? dijkstraUnrolled<true, true>(kind, dist, queue, stop, progress, &max_g)
-                           : dijkstra<true>(kind, dist, queue, stop, progress, &max_g);
+      complete = propagate<true>(kind, dist, queue, stop, progress, &max_g);
       if (!complete) progress->frontier.store(queue.lastPopped(), std::memory_order_relaxed);
     } else {
       queue.push(0, goal);
-      complete = eight ? dijkstraUnrolled<false, false>(kind, dist, queue, stop, nullptr, &max_g)
-                 : sixteen ? dijkstraUnrolled<true, false>(kind, dist, queue, stop, nullptr, &max_g)
-                           : dijkstra<false>(kind, dist, queue, stop, nullptr, &max_g);
+      complete = propagate<false>(kind, dist, queue, stop, nullptr, &max_g);
     }
     grid.max_distance = max_g;
     return complete;
@@ -601,13 +622,9 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
     };
   };
   detail::RadixHeap queue;
-  auto propagate = [&](detail::RadixHeap& q) {
-    return nm == 8    ? dijkstraUnrolled<false, false>(kind, dist, q, stop)
-           : nm == 16 ? dijkstraUnrolled<true, false>(kind, dist, q, stop)
-                      : dijkstra<false>(kind, dist, q, stop);
-  };
+  auto resume = [&](detail::RadixHeap& q) { return propagate<false>(kind, dist, q, stop); };
   if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1),
-                               along(-1), propagate, stop, queue)) {
+                               along(-1), resume, stop, queue)) {
     return false;
   }
   // The cells it did not pop keep old distances; a bound is enough (a saturated distance would
@@ -652,8 +669,7 @@ bool HeuristicGridBuilder::runTask(Job& job, int k, const StopCondition* stop,
   }
   if (job.base[k] != nullptr)
     return repairGrid(kinds_[k], job.gx, job.gy, *job.base[k], *job.changed, *job.result[k], stop);
-  // A grid complete before anyone reads it needs no progress, and Dijkstra's order is the
-  // quicker to complete (the A* pushes cells about twice as often).
+  // A grid complete before anyone reads it needs no progress (no bits to set).
   if (complete_here) job.result[k]->progress.reset();
   return run(kinds_[k], job.gx, job.gy, *job.result[k], stop, job.result[k]->progress.get());
 }

@@ -44,7 +44,7 @@ constexpr std::uint32_t kGridFraction = 4;
 /// shortest obstacle-free walk of the grid's moves (8- or 16-connected) to that cell, in padded
 /// coordinates, times `per_cell`, rounded down: a metric of the move graph, so
 /// |walk(a) - walk(b)| <= length for a move between a and b, and no square root to take. With
-/// per_cell * length <= the cheapest step of every move (HeuristicGridBuilder::towardCell),
+/// per_cell * length <= the cheapest step of every move (HeuristicGridBuilder::buildKind),
 ///   e(a) <= floor(per_cell * walk(b) + per_cell * length) <= e(b) + ceil(per_cell * length)
 ///        <= e(b) + step
 /// for every move between a and b, either way: e is consistent, the keys never decrease, and a
@@ -213,6 +213,7 @@ class HeuristicGridBuilder {
     std::vector<std::uint32_t> step;  // per move, 256 cost classes
     std::uint32_t max_step = 0;
     std::uint32_t min_step = 0;  // of a passable move
+    double walk_per_cell = 0.0;  // GridDirection::per_cell: the cheapest step per unit length
     int reach = 1;               // cells: the farthest a move's end or required cell lies
   };
   static constexpr int kMaxRequired = 4;
@@ -268,6 +269,10 @@ class HeuristicGridBuilder {
   bool dijkstraUnrolled(const Kind& kind, std::uint32_t* dist, Queue& queue,
                         const StopCondition* stop, GridProgress* progress = nullptr,
                         std::uint32_t* max_g = nullptr) const;
+  /// dijkstra() with kind's moves: unrolled for 8 and 16, else the generic loop.
+  template <bool kTracked, class Queue>
+  bool propagate(const Kind& kind, std::uint32_t* dist, Queue& queue, const StopCondition* stop,
+                 GridProgress* progress = nullptr, std::uint32_t* max_g = nullptr) const;
 
   const LatticeGraph& graph_;
   std::unique_ptr<CoarseLattice> coarse_;
