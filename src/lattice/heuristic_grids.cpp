@@ -129,11 +129,12 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
   const int connectivity = c.heuristics.anchor_connectivity;
   if (needed_[0])
     buildKind(0, connectivity, graph.gridAnchorUnitsPerCell(), nullptr, kInscribedCost - 1,
-              previous);
+              previous, &graph.gridAnchorMoveUnits());
   const double s = graph.cheapestUnitsPerCell();
   const bool kinematic = c.heuristics.inadmissible == LatticeConfig::Inadmissible::kKinematic;
   if (needed_[1] && needed_[0] && kinematic && graph.gridAnchorUnitsPerCell() > 0) {
-    // The point robot's grid is the anchor's (where the centre may be), at full scale.
+    // The point robot's grid is the anchor's (where the centre may be), at full scale (the
+    // classes of move the anchor raises above its smallest scale a little more).
     alias_[1] = 0;
     scale_[1] = s / graph.gridAnchorUnitsPerCell();
   } else if (needed_[1]) {
@@ -186,7 +187,8 @@ HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph,
 void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_cell,
                                      const std::vector<std::uint8_t>* mask,
                                      std::uint8_t max_cost_class,
-                                     const HeuristicGridBuilder* previous) {
+                                     const HeuristicGridBuilder* previous,
+                                     const std::vector<double>* move_units) {
   Kind& kind = kinds_[k];
   const int pw = width_ + 4, ph = height_ + 4;
   const std::vector<std::uint8_t>& cost = graph_.map().cost;
@@ -234,8 +236,9 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
     kind.required_count.push_back(static_cast<int>(mv.required.size()) - 2);
     kind.either_side.push_back(mv.either_side ? 1 : 0);
     for (int c = 0; c < 256; ++c) {
+      const double units = move_units != nullptr ? (*move_units)[m] : units_per_cell;
       const double step =
-          units_per_cell * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+          units * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));
       if (c <= 252) {
         kind.max_step = std::max(kind.max_step, kind.step[m * 256 + c]);

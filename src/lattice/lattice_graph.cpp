@@ -420,7 +420,7 @@ void LatticeGraph::computeAnchorScales() {
   // base - k w) for every action: the cost of an edge then covers both terms' decrease.
   const std::vector<GridMove> moves = gridMoves(config_.heuristics.anchor_connectivity);
   const double inf = std::numeric_limits<double>::infinity();
-  double euclid = inf, grid = inf;
+  double euclid = inf, uniform = inf;
   std::vector<double> walks(actions_.size(), 0.0);
   for (std::size_t i = 0; i < actions_.size(); ++i) {
     const LatticeAction& a = actions_[i];
@@ -428,13 +428,66 @@ void LatticeGraph::computeAnchorScales() {
     const double base = static_cast<double>(a.base_cost);
     euclid = std::min(euclid, base / std::hypot(a.dx, a.dy));
     walks[i] = walkLength(action_cells_[i].centre, CellOffset{a.dx, a.dy}, moves);
-    if (std::isfinite(walks[i]) && walks[i] > 0.0) grid = std::min(grid, base / walks[i]);
+    if (std::isfinite(walks[i]) && walks[i] > 0.0) uniform = std::min(uniform, base / walks[i]);
   }
   if (!std::isfinite(euclid)) euclid = 0.0;  // only turns in place: no distance information
-  if (!std::isfinite(grid)) grid = 0.0;
+  if (!std::isfinite(uniform)) uniform = 0.0;
   cheapest_per_cell_ = euclid;
   euclid_per_cell_ = euclid * (1.0 - 1e-9);
-  grid_anchor_per_cell_ = grid * (1.0 - 1e-6);  // slack for the fixed-point rounding of the Q table
+  // One scale per class of move (same length: the axis steps, the diagonals, the knight moves),
+  // each as large as the actions allow, the short ones first: a uniform scale is held down by
+  // the worst fit (Smac's 5 cm set: a turn to (7, 2), whose 16-connected walk is 1.4 % longer
+  // than its arc) and then shortens moves that fit better, there the diagonals. The consistency
+  // argument above holds for any move costs under which every action's centre cells contain a walk
+  // no costlier than the action's base cost (walkLength with the scaled lengths).
+  std::vector<double> scale(moves.size(), uniform);
+  auto fits = [&](const std::vector<double>& sc) {
+    std::vector<GridMove> scaled = moves;
+    for (std::size_t m = 0; m < moves.size(); ++m) scaled[m].length = moves[m].length * sc[m];
+    for (std::size_t i = 0; i < actions_.size(); ++i) {
+      if (!std::isfinite(walks[i]) || walks[i] <= 0.0) continue;
+      const LatticeAction& a = actions_[i];
+      const double w = walkLength(action_cells_[i].centre, CellOffset{a.dx, a.dy}, scaled);
+      if (w > static_cast<double>(a.base_cost)) return false;
+    }
+    return true;
+  };
+  if (uniform > 0.0 && config_.heuristics.anchor_move_scales) {
+    // Each class raised in turn from the uniform scale as far as the actions allow, the others
+    // kept: the result is nowhere below the uniform grid. (Raising the axis steps by lowering
+    // the knight moves instead, which Smac's set allows, cost more expansions than it saved.)
+    std::vector<double> lengths;
+    for (const GridMove& mv : moves) lengths.push_back(mv.length);
+    std::sort(lengths.begin(), lengths.end());
+    lengths.erase(std::unique(lengths.begin(), lengths.end()), lengths.end());
+    for (const double len : lengths) {
+      auto with = [&](double v) {
+        std::vector<double> sc = scale;
+        for (std::size_t m = 0; m < moves.size(); ++m)
+          if (moves[m].length == len) sc[m] = v;
+        return sc;
+      };
+      // No class above the cheapest cost per cell of displacement (the Euclidean scale).
+      double lo = uniform, hi = euclid;
+      if (fits(with(hi))) {
+        lo = hi;
+      } else if (fits(with(lo + (hi - lo) / 65536))) {  // else this class cannot rise
+        for (int it = 0; it < 16; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (fits(with(mid)) ? lo : hi) = mid;
+        }
+      }
+      scale = with(lo);
+    }
+  }
+  grid_anchor_move_units_.clear();
+  for (const double sc : scale) {
+    grid_anchor_move_units_.push_back(sc * (1.0 - 1e-6));  // slack for the Q table's rounding
+  }
+  grid_anchor_per_cell_ = *std::min_element(scale.begin(), scale.end()) * (1.0 - 1e-6);
+  std::vector<GridMove> scaled = moves;
+  for (std::size_t m = 0; m < moves.size(); ++m)
+    scaled[m].length = moves[m].length * grid_anchor_move_units_[m];
   double bt_e = inf, bt_g = inf;
   for (std::size_t i = 0; i < actions_.size(); ++i) {
     const LatticeAction& a = actions_[i];
@@ -444,8 +497,10 @@ void LatticeGraph::computeAnchorScales() {
     if (turn <= 0.0) continue;
     const double base = static_cast<double>(a.base_cost);
     bt_e = std::min(bt_e, (base - euclid_per_cell_ * std::hypot(a.dx, a.dy)) / turn);
-    const double w = std::isfinite(walks[i]) ? walks[i] : 0.0;
-    bt_g = std::min(bt_g, (base - grid_anchor_per_cell_ * w) / turn);
+    const double w = std::isfinite(walks[i]) && walks[i] > 0.0
+                         ? walkLength(action_cells_[i].centre, CellOffset{a.dx, a.dy}, scaled)
+                         : 0.0;
+    bt_g = std::min(bt_g, (base - w) / turn);
   }
   euclid_turn_per_rad_ = std::isfinite(bt_e) ? std::max(0.0, bt_e) * (1.0 - 1e-9) : 0.0;
   grid_turn_per_rad_ = std::isfinite(bt_g) ? std::max(0.0, bt_g) * (1.0 - 1e-6) : 0.0;

@@ -113,9 +113,9 @@ TEST(GridDirection, IsConsistentAtTheBuildersScale) {
     EXPECT_EQ(d.knights, c.heuristics.anchor_connectivity == 16);
     const std::vector<GridMove> moves = gridMoves(c.heuristics.anchor_connectivity);
     std::vector<std::uint32_t> steps;
-    for (const GridMove& m : moves) {
+    for (std::size_t m = 0; m < moves.size(); ++m) {
       steps.push_back(static_cast<std::uint32_t>(
-          std::floor(g.gridAnchorUnitsPerCell() * m.length * kGridFraction)));
+          std::floor(g.gridAnchorMoveUnits()[m] * moves[m].length * kGridFraction)));
     }
     // Centred in the square (the padded coordinates do not matter to the differences).
     d.x = d.y = kSide / 2;

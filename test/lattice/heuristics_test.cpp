@@ -109,9 +109,10 @@ TEST(HeuristicGridTest, PointRobotGridEqualsReferenceDijkstra) {
 
 // The same with any moves (gridMoves' required cells: all of them, or for a diagonal the two
 // ends and one side cell), written independently of the builder's unrolled loops.
-std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, double units,
-                                              double pen, int max_class,
-                                              const std::vector<GridMove>& moves) {
+// `units`: cost units per cell of length, per move.
+std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy,
+                                              const std::vector<double>& units, double pen,
+                                              int max_class, const std::vector<GridMove>& moves) {
   const int w = m.width, h = m.height;
   auto passable = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < w && y < h && m.at(x, y) <= max_class;
@@ -127,7 +128,8 @@ std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, 
     q.pop();
     if (dist != d[i]) continue;
     const int x = i % w, y = i / w;
-    for (const GridMove& mv : moves) {
+    for (std::size_t k = 0; k < moves.size(); ++k) {
+      const GridMove& mv = moves[k];
       int c = -1, side = 256;
       bool ok = true;
       for (const CellOffset& r : mv.required) {
@@ -145,7 +147,7 @@ std::vector<std::uint64_t> referenceGridMoves(const GridMap& m, int gx, int gy, 
       if (!ok || (mv.either_side && side == 256)) continue;
       if (mv.either_side) c = std::max(c, side);
       const double step =
-          units * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
+          units[k] * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       const std::uint64_t nd = dist + static_cast<std::uint64_t>(std::floor(step));
       const int j = (y + mv.dy) * w + (x + mv.dx);
       if (nd < d[j]) {
@@ -168,6 +170,11 @@ TEST(HeuristicGridTest, AnchorGridEqualsReferenceDijkstraForBothConnectivities) 
         map->cost[(seed * 7919 + k * 104729) % map->cost.size()] = kInscribedCost;
       LatticeConfig c;
       c.motion.turning_radius = 0.2;
+      if (seed == 4) {  // Smac's kind of set: the grid's diagonal steps scaled above the rest
+        c.motion.turning_radius = 0.5;
+        c.motion.model = MotionModel::kAckermann;
+        c.motion.turn_in_place = false;
+      }
       c.robot.radius = 0.0;
       c.cost.penalty = seed == 5 ? 252.0 : 3.0;
       c.heuristics.anchor_connectivity = connectivity;
@@ -176,7 +183,7 @@ TEST(HeuristicGridTest, AnchorGridEqualsReferenceDijkstraForBothConnectivities) 
       LatticeGraph g(map, c);
       HeuristicGridBuilder b(g);
       const DistanceGrid grid = b.computeOne(GridKind::kAnchor, gx, gy);
-      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorUnitsPerCell(), c.cost.penalty,
+      const auto ref = referenceGridMoves(*map, gx, gy, g.gridAnchorMoveUnits(), c.cost.penalty,
                                           kInscribedCost - 1, gridMoves(connectivity));
       for (int y = 0; y < map->height; ++y) {
         for (int x = 0; x < map->width; ++x) {
@@ -362,31 +369,20 @@ TEST(AnchorTest, WithoutTurnTermConsistentAndHeadingFree) {
 }
 
 // Exhaustive cost-to-go on a small lattice (reverse Dijkstra over all edges): h0 never exceeds it.
-TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
-  auto map = test::randomMap(40, 30, 0.05, 21, 10, 120);
-  LatticeConfig c;
-  c.motion.turning_radius = 0.25;
-  c.motion.allow_reverse = true;
-  c.robot.footprint = test::rectangle(0.07, 0.05);
-  c.cost.penalty = 5.0;
-  c.cost.time_to_turn_45 = 1.5;
-  map->cost[15 * 40 + 20] = 0;
-  LatticeFixture f = makeFixture(map, c);
-  const LatticeState goal{20, 15, 5};
-  ASSERT_TRUE(f.graph->stateValid(goal.x, goal.y, goal.heading));
-  const int n = f.graph->numHeadings();
-  auto index = [&](int x, int y, int h) {
-    return (static_cast<std::size_t>(y) * map->width + x) * n + h;
-  };
-  const std::size_t total = static_cast<std::size_t>(map->width) * map->height * n;
+// The exact cost-to-go of every lattice state to `goal` (Dijkstra on the reversed edges),
+// indexed ((y * width + x) * headings + heading).
+std::vector<Cost> exactCostToGo(const LatticeGraph& g, const LatticeState& goal) {
+  const int n = g.numHeadings(), w = g.width(), h = g.height();
+  auto index = [&](int x, int y, int k) { return (static_cast<std::size_t>(y) * w + x) * n + k; };
+  const std::size_t total = static_cast<std::size_t>(w) * h * n;
   std::vector<std::vector<std::pair<std::size_t, Cost>>> reverse(total);
-  for (int y = 0; y < map->height; ++y)
-    for (int x = 0; x < map->width; ++x)
-      for (int h = 0; h < n; ++h)
-        for (const LatticeAction* a = f.graph->actionsBegin(h); a != f.graph->actionsEnd(h); ++a) {
-          const Cost cost = f.graph->edgeCost(x, y, *a);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int k = 0; k < n; ++k)
+        for (const LatticeAction* a = g.actionsBegin(k); a != g.actionsEnd(k); ++a) {
+          const Cost cost = g.edgeCost(x, y, *a);
           if (cost != kInvalidEdge)
-            reverse[index(x + a->dx, y + a->dy, a->end_heading)].push_back({index(x, y, h), cost});
+            reverse[index(x + a->dx, y + a->dy, a->end_heading)].push_back({index(x, y, k), cost});
         }
   std::vector<Cost> togo(total, kInfiniteCost);
   using Item = std::pair<Cost, std::size_t>;
@@ -404,30 +400,151 @@ TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
       }
     }
   }
+  return togo;
+}
+
+// h0 <= the exact cost-to-go at every state that reaches the goal; returns the mean of h0 / it.
+double expectAdmissible(const LatticeFixture& f, const LatticeState& goal,
+                        const std::vector<Cost>& togo) {
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
+  LatticeProblem p(*f.graph, heur, goal, goal, 3);
+  const int n = f.graph->numHeadings();
+  int reachable = 0, tight = 0;
+  double ratio_sum = 0.0;
+  for (int y = 0; y < f.map->height; ++y)
+    for (int x = 0; x < f.map->width; ++x)
+      for (int h = 0; h < n; ++h) {
+        const HeuristicValue hv = p.anchor(x, y, h);
+        const Cost t = togo[(static_cast<std::size_t>(y) * f.map->width + x) * n + h];
+        if (t == kInfiniteCost) continue;
+        ++reachable;
+        EXPECT_NE(hv, kInfiniteHeuristic) << x << "," << y << "," << h;
+        EXPECT_LE(static_cast<Cost>(hv), t) << x << "," << y << "," << h;
+        if (hv == kInfiniteHeuristic || static_cast<Cost>(hv) > t) return 0.0;
+        tight += hv * 10 >= t * 7;
+        ratio_sum += static_cast<double>(hv) / std::max<Cost>(1, t);
+      }
+  std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable,
+              tight, reachable);
+  EXPECT_GT(reachable, 1000);
+  return ratio_sum / reachable;
+}
+
+TEST(AnchorTest, AdmissibleAgainstExactCostToGo) {
+  auto map = test::randomMap(40, 30, 0.05, 21, 10, 120);
+  LatticeConfig c;
+  c.motion.turning_radius = 0.25;
+  c.motion.allow_reverse = true;
+  c.robot.footprint = test::rectangle(0.07, 0.05);
+  c.cost.penalty = 5.0;
+  c.cost.time_to_turn_45 = 1.5;
+  map->cost[15 * 40 + 20] = 0;
+  LatticeFixture f = makeFixture(map, c);
+  const LatticeState goal{20, 15, 5};
+  ASSERT_TRUE(f.graph->stateValid(goal.x, goal.y, goal.heading));
+  const std::vector<Cost> togo = exactCostToGo(*f.graph, goal);
   for (bool turn_term : {false, true}) {
     c.heuristics.anchor_turn_term = turn_term;
-    LatticeFixture ft = makeFixture(map, c);
-    auto heur = ft.builder->compute(goal.x, goal.y, goal.heading);
-    LatticeProblem p(*ft.graph, heur, goal, goal, 3);
-    int reachable = 0, tight = 0;
-    double ratio_sum = 0.0;
-    for (int y = 0; y < map->height; ++y)
-      for (int x = 0; x < map->width; ++x)
-        for (int h = 0; h < n; ++h) {
-          const HeuristicValue hv = p.anchor(x, y, h);
-          const Cost t = togo[index(x, y, h)];
-          if (t == kInfiniteCost) continue;
-          ++reachable;
-          ASSERT_NE(hv, kInfiniteHeuristic) << x << "," << y << "," << h;
-          ASSERT_LE(static_cast<Cost>(hv), t) << x << "," << y << "," << h;
-          tight += hv * 10 >= t * 7;
-          ratio_sum += static_cast<double>(hv) / std::max<Cost>(1, t);
-        }
-    std::printf("anchor / cost-to-go: mean %.3f, within 70%%: %d of %d\n", ratio_sum / reachable,
-                tight, reachable);
-    EXPECT_GT(reachable, 1000);
-    EXPECT_GT(ratio_sum / reachable, 0.2);  // and it carries information
+    EXPECT_GT(expectAdmissible(makeFixture(map, c), goal, togo), 0.2);  // it carries information
   }
+}
+
+// Smac's kind of set (16 headings, Ackermann, 0.5 m at 5 cm), our generator's: one scale for
+// every move of the anchor's grid is held down by a turn whose knight-move walk is longer than
+// its arc, and the diagonal steps then rise above it (LatticeGraph::computeAnchorScales).
+LatticeConfig ackermannConfig() {
+  LatticeConfig c;
+  c.motion.turning_radius = 0.5;
+  c.motion.model = MotionModel::kAckermann;
+  c.motion.turn_in_place = false;
+  c.robot.radius = 0.0;
+  c.cost.penalty = 1.0;
+  return c;
+}
+
+// Each class of move at the largest scale under which every action's centre cells still hold a
+// walk no costlier than the action (what makes the grid a relaxation), and none below the one
+// uniform scale; the mutation: any class raised by 0.2 % (below the Euclidean scale, the cap)
+// breaks that for some action.
+TEST(AnchorMoveScalesTest, EachClassAtTheLargestScaleTheActionsAllow) {
+  auto map = test::randomMap(60, 60, 0.05, 3, 0, 0);
+  LatticeConfig c = ackermannConfig();
+  c.heuristics.anchor_move_scales = false;
+  const LatticeGraph uniform(map, c);
+  c.heuristics.anchor_move_scales = true;
+  const LatticeGraph g(map, c);
+  const std::vector<GridMove> moves = gridMoves(c.heuristics.anchor_connectivity);
+  const std::vector<double>& units = g.gridAnchorMoveUnits();
+  ASSERT_EQ(units.size(), moves.size());
+  ASSERT_EQ(uniform.gridAnchorMoveUnits().size(), moves.size());
+  const double u = uniform.gridAnchorMoveUnits()[0];
+  bool raised = false;
+  for (std::size_t m = 0; m < moves.size(); ++m) {
+    EXPECT_DOUBLE_EQ(uniform.gridAnchorMoveUnits()[m], u) << "one scale for all";
+    EXPECT_GE(units[m], u) << "move " << m;
+    EXPECT_LE(units[m], g.cheapestUnitsPerCell()) << "move " << m;
+    raised = raised || units[m] > u * 1.005;
+  }
+  EXPECT_TRUE(raised) << "this set lets some class of move rise";
+  auto fits = [&](const std::vector<double>& sc) {
+    std::vector<GridMove> scaled = moves;
+    for (std::size_t m = 0; m < moves.size(); ++m) scaled[m].length *= sc[m];
+    for (std::size_t i = 0; i < g.actions().size(); ++i) {
+      const LatticeAction& a = g.actions()[i];
+      if (a.dx == 0 && a.dy == 0) continue;
+      const double w = walkLength(g.actionCells(i).centre, CellOffset{a.dx, a.dy}, scaled);
+      if (std::isfinite(w) && w > static_cast<double>(a.base_cost)) return false;
+    }
+    return true;
+  };
+  EXPECT_TRUE(fits(units));
+  for (const double len : {1.0, std::sqrt(2.0), std::sqrt(5.0)}) {
+    std::vector<double> more = units;
+    bool capped = false;
+    for (std::size_t m = 0; m < moves.size(); ++m) {
+      if (std::abs(moves[m].length - len) > 1e-9) continue;
+      more[m] *= 1.002;
+      capped = capped || more[m] > g.cheapestUnitsPerCell();
+    }
+    if (!capped) {
+      EXPECT_FALSE(fits(more)) << "the class of length " << len << " could rise";
+    }
+  }
+}
+
+// The grid alone as the anchor (no block abstraction, no kinematic table), with the raised
+// classes: admissible against the exact cost-to-go, consistent on random edges both ways, and
+// nowhere below the uniform grid, above it on many states.
+TEST(AnchorMoveScalesTest, GridAnchorAdmissibleConsistentAndAboveTheUniformOne) {
+  auto map = test::randomMap(48, 40, 0.05, 8, 8, 200);
+  LatticeConfig c = ackermannConfig();
+  c.cost.penalty = 3.0;
+  c.heuristics.coarse_anchor = false;
+  c.heuristics.kinematic_radius = 0.0;
+  const LatticeState goal{24, 20, 2};
+  map->cost[goal.y * map->width + goal.x] = 0;
+  LatticeFixture f = makeFixture(map, c);
+  ASSERT_TRUE(f.graph->stateValid(goal.x, goal.y, goal.heading));
+  const std::vector<Cost> togo = exactCostToGo(*f.graph, goal);
+  const double mean = expectAdmissible(f, goal, togo);
+  checkConsistencyOnRandomEdges(f, goal, 6000, 3);
+  checkConsistencyOnRandomEdges(f, goal, 6000, 4, true);
+  c.heuristics.anchor_move_scales = false;
+  LatticeFixture fu = makeFixture(map, c);
+  const double mean_uniform = expectAdmissible(fu, goal, togo);
+  EXPECT_GT(mean, mean_uniform);
+  auto heur = f.builder->compute(goal.x, goal.y, goal.heading);
+  auto heur_u = fu.builder->compute(goal.x, goal.y, goal.heading);
+  LatticeProblem p(*f.graph, heur, goal, goal, 3), pu(*fu.graph, heur_u, goal, goal, 3);
+  int above = 0;
+  for (int y = 0; y < map->height; ++y)
+    for (int x = 0; x < map->width; ++x) {
+      const HeuristicValue h = p.anchor(x, y, 0), hu = pu.anchor(x, y, 0);
+      if (hu == kInfiniteHeuristic) continue;
+      ASSERT_GE(h, hu) << x << "," << y;
+      above += h > hu;
+    }
+  EXPECT_GT(above, map->width * map->height / 10);
 }
 
 TEST(HeuristicGridTest, GoalsCachedAndGridsShared) {

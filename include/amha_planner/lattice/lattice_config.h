@@ -101,6 +101,11 @@ struct LatticeConfig {
     /// directions are those of the usual 16-heading lattices: the grid's scale, and so its
     /// distances, then fall less short of the lattice's; see docs/lattice.md).
     int anchor_connectivity = 16;
+    /// The grid's step costs: one scale per class of move (axis, diagonal, knight), each as
+    /// large as the primitives allow (true), or one scale for all, the largest that fits every
+    /// primitive (false: its worst fit then shortens every move). Both are admissible and
+    /// consistent; see LatticeGraph::computeAnchorScales.
+    bool anchor_move_scales = true;
     /// With grid_anchor: also take the exact cost-to-go on a block abstraction of the lattice
     /// (cells grouped into coarse_block x coarse_block blocks; 0 = automatic: at most ~250k
     /// abstract states, see coarse_lattice.h), which knows what turning costs. Admissible and

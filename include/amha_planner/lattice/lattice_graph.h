@@ -137,9 +137,12 @@ class LatticeGraph {
   /// A pose relative to cell (x, y)'s centre (grid frame) -> map frame.
   Pose2D cellPoseToMap(int x, int y, const Pose2D& relative) const;
 
-  /// Anchor scales (cost units per cell of distance): Euclidean, and the grid relaxation's.
+  /// Anchor scales (cost units per cell of distance): Euclidean, and the grid relaxation's
+  /// largest (the scale of its exact moves).
   double euclidUnitsPerCell() const { return euclid_per_cell_; }
   double gridAnchorUnitsPerCell() const { return grid_anchor_per_cell_; }
+  /// The grid relaxation's scale per move of gridMoves(anchor_connectivity), in that order.
+  const std::vector<double>& gridAnchorMoveUnits() const { return grid_anchor_move_units_; }
   double cheapestUnitsPerCell() const { return cheapest_per_cell_; }
   /// Turning terms (cost units per radian of heading still to change) that may be added to the
   /// Euclidean / grid anchor without losing consistency (see computeAnchorScales).
@@ -214,6 +217,7 @@ class LatticeGraph {
   bool openings_shared_ = false;         // equal radii: opened_[1] is not kept
   bool openings_equal_ = false;
   double euclid_per_cell_ = 0.0, grid_anchor_per_cell_ = 0.0, cheapest_per_cell_ = 0.0;
+  std::vector<double> grid_anchor_move_units_;
   double euclid_turn_per_rad_ = 0.0, grid_turn_per_rad_ = 0.0;
   std::shared_ptr<KinematicTables> kinematic_;
 };

@@ -220,9 +220,11 @@ class HeuristicGridBuilder {
   HeuristicGridBuilder(const LatticeGraph& graph, const HeuristicGridBuilder* previous);
   /// Builds kind k's tables; its levels from the map, or from `previous` (whose levels for kind
   /// k are the previous map's) where graph_.recomputed() says nothing changed.
+  /// `move_units`: the anchor's scale per move (null: units_per_cell for every move).
   void buildKind(int k, int connectivity, double units_per_cell,
                  const std::vector<std::uint8_t>* mask, std::uint8_t max_cost_class,
-                 const HeuristicGridBuilder* previous);
+                 const HeuristicGridBuilder* previous,
+                 const std::vector<double>* move_units = nullptr);
   /// compute() and repair(): repairs from `old` where it can (old and changed non-null).
   std::shared_ptr<const GoalHeuristics> computeOrRepair(
       int goal_x, int goal_y, int goal_heading, bool inadmissible, unsigned threads, bool backward,
