@@ -87,6 +87,13 @@ int planMain(int argc, char** argv) {
   app.add_option("--stall-w1", stall_w1,
                  "amha/ara: the w1 a stalled first iteration goes on with, in [1, 1e6]")
       ->check(weightRange());
+  std::optional<double> stall_mid_expansions, stall_mid_w1;
+  app.add_option("--stall-mid-w1", stall_mid_w1,
+                 "amha/ara: a rung before --stall-w1: a stalled first iteration goes on with this "
+                 "w1 first (if between the two), in [1, 1e6]")
+      ->check(weightRange());
+  app.add_option("--stall-mid-expansions", stall_mid_expansions,
+                 "amha/ara: ... for this many more expansions, then --stall-w1 (0: no such rung)");
   std::optional<bool> publish_within;
   app.add_flag("--publish-within", publish_within,
                "publish cheaper paths as soon as an iteration finds them (the default for amha; "
@@ -139,6 +146,15 @@ int planMain(int argc, char** argv) {
     pc.stall_expansions = static_cast<std::uint64_t>(*stall_expansions);
   }
   pc.stall_w1 = stall_w1.value_or(pc.stall_w1);
+  if (stall_mid_expansions) {
+    if (!(*stall_mid_expansions >= 0.0 && *stall_mid_expansions <= 1e15)) {
+      std::cerr << "amha plan: --stall-mid-expansions " << *stall_mid_expansions
+                << ": expected a number of expansions in [0, 1e15]\n";
+      return kExitUsage;
+    }
+    pc.stall_mid_expansions = static_cast<std::uint64_t>(*stall_mid_expansions);
+  }
+  pc.stall_mid_w1 = stall_mid_w1.value_or(pc.stall_mid_w1);
   try {
     makePlanner(pc);  // validates the weights before any heavy work
   } catch (const std::invalid_argument& e) {

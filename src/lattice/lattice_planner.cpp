@@ -622,6 +622,8 @@ PlannerConfig defaultPlannerConfig(Algorithm algorithm) {
     c.certified_split = 0.0;
     c.publish_within_iterations = true;
     c.stall_expansions = 10000;
+    c.stall_mid_w1 = 1.1;
+    c.stall_mid_expansions = 5000;
     c.stall_w1 = 2.0;
   }
   return c;

@@ -236,6 +236,8 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh) {
       getBool(pnh, "publish_within_iterations", p.publish_within_iterations);
   p.stall_expansions = getInt(pnh, "stall_expansions", p.stall_expansions, 0, 1 << 30);
   p.stall_w1 = getDouble(pnh, "stall_w1", p.stall_w1, 1.0, amha::kMaxWeight);
+  p.stall_mid_w1 = getDouble(pnh, "stall_mid_w1", p.stall_mid_w1, 1.0, amha::kMaxWeight);
+  p.stall_mid_expansions = getInt(pnh, "stall_mid_expansions", p.stall_mid_expansions, 0, 1 << 30);
   p.default_time_budget = getDouble(pnh, "default_time_budget", p.default_time_budget, 1e-3, 1e6);
   p.max_memory_mb = getDouble(pnh, "max_memory_mb", p.max_memory_mb, 1.0, 1e7);
   p.ignore_goal_heading = getBool(pnh, "ignore_goal_heading", p.ignore_goal_heading);
@@ -283,6 +285,8 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
     c.publish_within_iterations = params.publish_within_iterations;
     c.stall_expansions = static_cast<std::uint64_t>(params.stall_expansions);
     c.stall_w1 = params.stall_w1;
+    c.stall_mid_w1 = params.stall_mid_w1;
+    c.stall_mid_expansions = static_cast<std::uint64_t>(params.stall_mid_expansions);
   }
   // ~eps and ~eps_decrement are ARA*'s and weighted A*'s w1 and dw1; a negative parameter is
   // unset, and the request's w1, w2 (0: unset) come last.

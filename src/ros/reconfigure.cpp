@@ -58,6 +58,8 @@ AmhaPlannerConfig configFromParams(const PlannerParams& p) {
   c.publish_within_iterations = p.publish_within_iterations;
   c.stall_expansions = p.stall_expansions;
   c.stall_w1 = p.stall_w1;
+  c.stall_mid_w1 = p.stall_mid_w1;
+  c.stall_mid_expansions = p.stall_mid_expansions;
   c.kinematic_radius = l.heuristics.kinematic_radius;
   c.anchor_connectivity = l.heuristics.anchor_connectivity;
   c.inadmissible_heuristics =
@@ -121,6 +123,7 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base,
       {"final_gap", c.final_gap},
       {"kinematic_radius", c.kinematic_radius},
       {"stall_w1", c.stall_w1},
+      {"stall_mid_w1", c.stall_mid_w1},
       {"nominal_speed", c.nominal_speed},
       {"time_to_turn_45", c.time_to_turn_45},
       {"cost_penalty", c.cost_penalty},
@@ -179,6 +182,8 @@ bool paramsFromConfig(const AmhaPlannerConfig& c, const PlannerParams& base,
   p.publish_within_iterations = c.publish_within_iterations;
   p.stall_expansions = c.stall_expansions;
   p.stall_w1 = c.stall_w1;
+  p.stall_mid_w1 = c.stall_mid_w1;
+  p.stall_mid_expansions = c.stall_mid_expansions;
   l.heuristics.kinematic_radius = c.kinematic_radius;
   l.heuristics.anchor_connectivity = c.anchor_connectivity;
   l.heuristics.inadmissible = c.inadmissible_heuristics == "paper"

@@ -81,6 +81,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   integer_keys_ = problem.integerKeys();
   resetQueues();
   iteration_ = 0;
+  stall_rung_ = 0;
   dts_ = opt_.schedule == QueueSchedule::kDts && nh() > 1;
   next_queue_ = 1;
   if (dts_) {
@@ -250,14 +251,27 @@ bool MhaEngine::improvePath() {
       }
     }
     if (limitHit()) return false;
-    // No path yet after the stall budget: on to an iteration with a larger w1 (stall_w1), from
-    // OPEN_0 u INCONS as line 38 would, once.
-    if (iteration_ == 0 && opt_.anytime && opt_.stall_expansions > 0 &&
-        expansions_ >= opt_.stall_expansions && goal_g >= kInfiniteCost && opt_.stall_w1 > w1_) {
-      collectOpen0AndIncons();
-      ++iteration_;
-      if (!prepareNextIteration(opt_.stall_w1, w2_)) return false;
-      continue;
+    // No path yet after the stall budget: on to an iteration with a larger w1, from OPEN_0 u
+    // INCONS as line 38 would: stall_mid_w1 for stall_mid_expansions more (if set), then
+    // stall_w1, each once.
+    if (opt_.anytime && opt_.stall_expansions > 0 && goal_g >= kInfiniteCost) {
+      double next = 0.0;
+      if (stall_rung_ == 0 && iteration_ == 0 && expansions_ >= opt_.stall_expansions) {
+        const bool mid = opt_.stall_mid_expansions > 0 && opt_.stall_mid_w1 > w1_ &&
+                         opt_.stall_mid_w1 < opt_.stall_w1;
+        next = mid ? opt_.stall_mid_w1 : opt_.stall_w1;
+        stall_rung_ = mid ? 1 : 2;
+      } else if (stall_rung_ == 1 &&
+                 expansions_ >= opt_.stall_expansions + opt_.stall_mid_expansions) {
+        next = opt_.stall_w1;
+        stall_rung_ = 2;
+      }
+      if (next > w1_) {
+        collectOpen0AndIncons();
+        ++iteration_;
+        if (!prepareNextIteration(next, w2_)) return false;
+        continue;
+      }
     }
     std::size_t q = kAnchor;
     if (n_inad > 0) {

@@ -23,8 +23,10 @@ struct MhaEngineOptions {
   WeightSchedule weight_schedule = WeightSchedule::kDecrement;
   double certified_ratio = 0.5, certified_split = 1.0, final_gap = 0.002;
   bool publish_improvements = false;   // PlannerConfig::publish_within_iterations
-  std::uint64_t stall_expansions = 0;  // PlannerConfig::stall_expansions, stall_w1
+  std::uint64_t stall_expansions = 0;  // PlannerConfig::stall_expansions, stall_w1, stall_mid_*
   double stall_w1 = 5.0;
+  double stall_mid_w1 = 0.0;
+  std::uint64_t stall_mid_expansions = 0;
   bool anytime = true;  // false: one ImprovePath (MHA*, weighted A*, A*)
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
@@ -154,6 +156,7 @@ class MhaEngine : public SearchBase {
   bool small_keys_ = false;    // the problem allows bucket queues nested per key and h
   bool integer_keys_ = false;  // ... or one stack per key
   int iteration_ = 0;
+  int stall_rung_ = 0;          // the stall rule: 0 before it, 1 at stall_mid_w1, 2 done
   std::size_t next_queue_ = 1;  // the inadmissible queue the next step tries (1..N)
   bool dts_ = false;            // opt_.schedule == kDts and there are inadmissible queues
   bool progress_ = false;       // DTS: the current expansion lowered its queue's smallest h

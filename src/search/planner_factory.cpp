@@ -66,7 +66,10 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
   o.publish_improvements = c.publish_within_iterations;
   o.stall_expansions = c.stall_expansions;
   o.stall_w1 = c.stall_w1;
+  o.stall_mid_w1 = c.stall_mid_w1;
+  o.stall_mid_expansions = c.stall_mid_expansions;
   if (c.stall_expansions > 0) checkWeight(c.stall_w1, "stall_w1");
+  if (c.stall_expansions > 0 && c.stall_mid_w1 != 0.0) checkWeight(c.stall_mid_w1, "stall_mid_w1");
   const bool certified = c.weight_schedule == WeightSchedule::kCertified;
   if (certified) {
     if (!(c.certified_ratio >= 0.0 && c.certified_ratio < 1.0)) {

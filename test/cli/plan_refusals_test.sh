@@ -45,7 +45,7 @@ refused "--coarse-block applies to --anchor coarse" "${plan[@]}" --anchor grid -
 
 # Item 1: weights and decrements outside their range (NaN and infinities too), in plan and tiles.
 for v in nan inf 0.5 1e15 1e308; do
-  for o in --w1 --w2 --eps --stall-w1; do refused "$o: a weight must be a finite number in [1, 1e+06]" "${plan[@]}" "$o" "$v"; done
+  for o in --w1 --w2 --eps --stall-w1 --stall-mid-w1; do refused "$o: a weight must be a finite number in [1, 1e+06]" "${plan[@]}" "$o" "$v"; done
   refused "--weight: a weight" tiles --size 3 --random 1 --weight "$v"
   refused "--w1: a weight" tiles --size 3 --random 1 --w1 "$v"
   refused "--eps: a weight" tiles --size 3 --random 1 --eps "$v"

@@ -132,6 +132,52 @@ TEST(WeightSchedule, AStalledFirstIterationGoesOnWithALargerW1) {
   EXPECT_GT(escalated, 5);
 }
 
+// With a middle rung the stalled first iteration goes on at stall_mid_w1, and at stall_w1 only
+// after stall_mid_expansions more without a path; each path carries its own iteration's bound.
+// A middle rung outside (w1, stall_w1) is skipped.
+TEST(WeightSchedule, AStalledFirstIterationClimbsTheMiddleRungFirst) {
+  int at_mid = 0, at_top = 0, runs = 0;
+  for (ExplicitGraph& g : graphs()) {
+    const Cost optimal = testing::distancesToGoal(g)[g.s_start];
+    if (optimal >= kInfiniteCost) continue;
+    for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
+      for (const double mid : {2.0, 4.0, 6.0}) {
+        PlannerConfig c = defaultConfig(a);
+        c.w1 = 1.0;
+        c.w2 = a == Algorithm::kAmhaStar ? 2.0 : 1.0;
+        c.weight_schedule = WeightSchedule::kCertified;
+        c.certified_ratio = 0.0;
+        c.stall_expansions = 3;
+        c.stall_mid_w1 = mid;
+        c.stall_mid_expansions = 4;
+        c.stall_w1 = 4.0;
+        c.check_invariants = true;
+        const SearchResult r = makePlanner(c)->search(g, SearchLimits());
+        ASSERT_TRUE(r.hasSolution());
+        EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
+        EXPECT_EQ(r.best().cost, optimal);
+        for (const Solution& s : r.solutions)
+          EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
+        const Solution& first = r.solutions.front();
+        EXPECT_TRUE(first.w1 == 1.0 || first.w1 == 4.0 || (mid == 2.0 && first.w1 == 2.0))
+            << "first w1 " << first.w1 << " with a middle rung at " << mid;
+        EXPECT_EQ(first.nominal_bound, first.w1 * c.w2);
+        if (mid != 2.0) continue;
+        ++runs;
+        if (first.w1 == 2.0) {
+          ++at_mid;
+          EXPECT_GE(first.expansions, 3u);
+        } else if (first.w1 == 4.0) {
+          ++at_top;
+          EXPECT_GE(first.expansions, 3u + 4u) << "the middle rung had its budget first";
+        }
+      }
+    }
+  }
+  EXPECT_GT(at_mid, runs / 10) << "some first paths come from the middle rung";
+  EXPECT_GT(at_top, 0) << "some stall there too";
+}
+
 TEST(WeightSchedule, DecrementsReportNoIterationThatStopsAtOnce) {
   for (ExplicitGraph& g : graphs()) {
     for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
@@ -183,6 +229,14 @@ TEST(WeightSchedule, OutOfRangeParametersAreRefused) {
   EXPECT_THROW(makePlanner(c), std::invalid_argument);
   c.certified_split = 1.0;
   c.dw1 = 0.0;  // the certified schedule does not use the decrements
+  EXPECT_NO_THROW(makePlanner(c));
+  for (const double bad : {0.5, kMaxWeight * 2, std::numeric_limits<double>::quiet_NaN()}) {
+    c = defaultConfig(Algorithm::kAmhaStar);
+    c.stall_expansions = 10;
+    c.stall_mid_w1 = bad;
+    EXPECT_THROW(makePlanner(c), std::invalid_argument) << bad;
+  }
+  c.stall_mid_w1 = 0.0;  // no middle rung
   EXPECT_NO_THROW(makePlanner(c));
 }
 

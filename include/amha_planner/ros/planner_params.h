@@ -46,6 +46,10 @@ struct PlannerParams {
   int stall_expansions = static_cast<int>(
       amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_expansions);
   double stall_w1 = amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_w1;
+  double stall_mid_w1 =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_mid_w1;
+  int stall_mid_expansions = static_cast<int>(
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_mid_expansions);
 
   double default_time_budget = 5.0;  ///< seconds, when a request gives 0
   /// Publish smoothed paths (PathSmoother): PlanSolution::path smoothed, lattice_path the raw.

@@ -108,6 +108,12 @@ struct PlannerConfig {
   /// there (the weights may rise once: each iteration's bound is proven for its own weights).
   std::uint64_t stall_expansions = 0;
   double stall_w1 = 5.0;
+  /// A rung between the two (0: none): the stalled first iteration goes on at stall_mid_w1 (if
+  /// above its w1 and below stall_w1) for stall_mid_expansions more expansions, and only then,
+  /// still without a path, at stall_w1. A small step up often suffices where the first w1
+  /// crawls, and its path is closer to the optimum than stall_w1's.
+  double stall_mid_w1 = 0.0;
+  std::uint64_t stall_mid_expansions = 0;
   /// Use at most this many inadmissible heuristics of the problem (all by default).
   std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
   /// Order in which the inadmissible queues are tried (A-MHA*, MHA*).
