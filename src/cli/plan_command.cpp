@@ -137,23 +137,22 @@ int planMain(int argc, char** argv) {
   pc.certified_split = certified_split.value_or(pc.certified_split);
   pc.final_gap = final_gap.value_or(pc.final_gap);
   pc.publish_within_iterations = publish_within.value_or(pc.publish_within_iterations);
-  if (stall_expansions) {
-    if (!(*stall_expansions >= 0.0 && *stall_expansions <= 1e15)) {
-      std::cerr << "amha plan: --stall-expansions " << *stall_expansions
+  // An expansion count given as a number (so that 1e4 reads): false, with a message, if it is
+  // not one in [0, 1e15].
+  auto expansions = [](const char* option, const std::optional<double>& v, std::uint64_t* out) {
+    if (!v) return true;
+    if (!(*v >= 0.0 && *v <= 1e15)) {
+      std::cerr << "amha plan: " << option << " " << *v
                 << ": expected a number of expansions in [0, 1e15]\n";
-      return kExitUsage;
+      return false;
     }
-    pc.stall_expansions = static_cast<std::uint64_t>(*stall_expansions);
-  }
+    *out = static_cast<std::uint64_t>(*v);
+    return true;
+  };
+  if (!expansions("--stall-expansions", stall_expansions, &pc.stall_expansions) ||
+      !expansions("--stall-mid-expansions", stall_mid_expansions, &pc.stall_mid_expansions))
+    return kExitUsage;
   pc.stall_w1 = stall_w1.value_or(pc.stall_w1);
-  if (stall_mid_expansions) {
-    if (!(*stall_mid_expansions >= 0.0 && *stall_mid_expansions <= 1e15)) {
-      std::cerr << "amha plan: --stall-mid-expansions " << *stall_mid_expansions
-                << ": expected a number of expansions in [0, 1e15]\n";
-      return kExitUsage;
-    }
-    pc.stall_mid_expansions = static_cast<std::uint64_t>(*stall_mid_expansions);
-  }
   pc.stall_mid_w1 = stall_mid_w1.value_or(pc.stall_mid_w1);
   try {
     makePlanner(pc);  // validates the weights before any heavy work

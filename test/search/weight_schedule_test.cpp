@@ -101,6 +101,33 @@ TEST(WeightSchedule, PublishingWithinIterationsFillsTheMiddleHonestly) {
       << "publishing within iterations should fill the middle of many runs";
 }
 
+// The stall rule's setting of the tests below: w1 = 1 stalls after 3 expansions, then w1 = 4
+// (after `mid` for 4 more expansions, with a middle rung).
+PlannerConfig stallConfig(Algorithm a, double mid = 0.0) {
+  PlannerConfig c = defaultConfig(a);
+  c.w1 = 1.0;
+  c.w2 = a == Algorithm::kAmhaStar ? 2.0 : 1.0;
+  c.weight_schedule = WeightSchedule::kCertified;
+  c.certified_ratio = 0.0;
+  c.stall_expansions = 3;
+  c.stall_w1 = 4.0;
+  c.stall_mid_w1 = mid;
+  c.stall_mid_expansions = mid > 0.0 ? 4 : 0;
+  c.check_invariants = true;
+  return c;
+}
+
+// Runs c on g: the stream ends proven optimal with every bound honest.
+SearchResult expectHonestStream(ExplicitGraph& g, const PlannerConfig& c, Cost optimal) {
+  SearchResult r = makePlanner(c)->search(g, SearchLimits());
+  EXPECT_TRUE(r.hasSolution());
+  if (!r.hasSolution()) return r;
+  EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
+  EXPECT_EQ(r.best().cost, optimal);
+  for (const Solution& s : r.solutions) EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
+  return r;
+}
+
 // A first iteration that stalls gives way to a larger w1: the path it finds carries that
 // iteration's bound, and the stream still ends proven optimal with every bound honest.
 TEST(WeightSchedule, AStalledFirstIterationGoesOnWithALargerW1) {
@@ -109,20 +136,9 @@ TEST(WeightSchedule, AStalledFirstIterationGoesOnWithALargerW1) {
     const Cost optimal = testing::distancesToGoal(g)[g.s_start];
     if (optimal >= kInfiniteCost) continue;
     for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
-      PlannerConfig c = defaultConfig(a);
-      c.w1 = 1.0;
-      c.w2 = a == Algorithm::kAmhaStar ? 2.0 : 1.0;
-      c.weight_schedule = WeightSchedule::kCertified;
-      c.certified_ratio = 0.0;
-      c.stall_expansions = 3;
-      c.stall_w1 = 4.0;
-      c.check_invariants = true;
-      const SearchResult r = makePlanner(c)->search(g, SearchLimits());
-      ASSERT_TRUE(r.hasSolution());
-      EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
-      EXPECT_EQ(r.best().cost, optimal);
-      for (const Solution& s : r.solutions) EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
-      if (r.solutions.front().w1 == 4.0) {
+      const PlannerConfig c = stallConfig(a);
+      const SearchResult r = expectHonestStream(g, c, optimal);
+      if (r.hasSolution() && r.solutions.front().w1 == 4.0) {
         ++escalated;
         EXPECT_GE(r.solutions.front().expansions, 3u);
         EXPECT_EQ(r.solutions.front().nominal_bound, 4.0 * c.w2);
@@ -142,22 +158,9 @@ TEST(WeightSchedule, AStalledFirstIterationClimbsTheMiddleRungFirst) {
     if (optimal >= kInfiniteCost) continue;
     for (const Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAraStar}) {
       for (const double mid : {2.0, 4.0, 6.0}) {
-        PlannerConfig c = defaultConfig(a);
-        c.w1 = 1.0;
-        c.w2 = a == Algorithm::kAmhaStar ? 2.0 : 1.0;
-        c.weight_schedule = WeightSchedule::kCertified;
-        c.certified_ratio = 0.0;
-        c.stall_expansions = 3;
-        c.stall_mid_w1 = mid;
-        c.stall_mid_expansions = 4;
-        c.stall_w1 = 4.0;
-        c.check_invariants = true;
-        const SearchResult r = makePlanner(c)->search(g, SearchLimits());
-        ASSERT_TRUE(r.hasSolution());
-        EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
-        EXPECT_EQ(r.best().cost, optimal);
-        for (const Solution& s : r.solutions)
-          EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
+        const PlannerConfig c = stallConfig(a, mid);
+        const SearchResult r = expectHonestStream(g, c, optimal);
+        if (!r.hasSolution()) continue;
         const Solution& first = r.solutions.front();
         EXPECT_TRUE(first.w1 == 1.0 || first.w1 == 4.0 || (mid == 2.0 && first.w1 == 2.0))
             << "first w1 " << first.w1 << " with a middle rung at " << mid;
