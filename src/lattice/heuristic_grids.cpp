@@ -235,8 +235,8 @@ void HeuristicGridBuilder::buildKind(int k, int connectivity, double units_per_c
     }
     kind.required_count.push_back(static_cast<int>(mv.required.size()) - 2);
     kind.either_side.push_back(mv.either_side ? 1 : 0);
+    const double units = move_units != nullptr ? (*move_units)[m] : units_per_cell;
     for (int c = 0; c < 256; ++c) {
-      const double units = move_units != nullptr ? (*move_units)[m] : units_per_cell;
       const double step =
           units * mv.length * (1.0 + pen * std::min(c, 252) / 252.0) * kGridFraction;
       kind.step[m * 256 + c] = static_cast<std::uint32_t>(std::min(std::floor(step), 1e9));

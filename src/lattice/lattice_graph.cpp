@@ -441,9 +441,14 @@ void LatticeGraph::computeAnchorScales() {
   // argument above holds for any move costs under which every action's centre cells contain a walk
   // no costlier than the action's base cost (walkLength with the scaled lengths).
   std::vector<double> scale(moves.size(), uniform);
-  auto fits = [&](const std::vector<double>& sc) {
+  // The moves with their lengths times sc: walkLength then gives a walk's cost.
+  auto scaledMoves = [&](const std::vector<double>& sc) {
     std::vector<GridMove> scaled = moves;
-    for (std::size_t m = 0; m < moves.size(); ++m) scaled[m].length = moves[m].length * sc[m];
+    for (std::size_t m = 0; m < moves.size(); ++m) scaled[m].length *= sc[m];
+    return scaled;
+  };
+  auto fits = [&](const std::vector<double>& sc) {
+    const std::vector<GridMove> scaled = scaledMoves(sc);
     for (std::size_t i = 0; i < actions_.size(); ++i) {
       if (!std::isfinite(walks[i]) || walks[i] <= 0.0) continue;
       const LatticeAction& a = actions_[i];
@@ -485,9 +490,7 @@ void LatticeGraph::computeAnchorScales() {
     grid_anchor_move_units_.push_back(sc * (1.0 - 1e-6));  // slack for the Q table's rounding
   }
   grid_anchor_per_cell_ = *std::min_element(scale.begin(), scale.end()) * (1.0 - 1e-6);
-  std::vector<GridMove> scaled = moves;
-  for (std::size_t m = 0; m < moves.size(); ++m)
-    scaled[m].length = moves[m].length * grid_anchor_move_units_[m];
+  const std::vector<GridMove> scaled = scaledMoves(grid_anchor_move_units_);
   double bt_e = inf, bt_g = inf;
   for (std::size_t i = 0; i < actions_.size(); ++i) {
     const LatticeAction& a = actions_[i];

@@ -138,7 +138,7 @@ class LatticeGraph {
   Pose2D cellPoseToMap(int x, int y, const Pose2D& relative) const;
 
   /// Anchor scales (cost units per cell of distance): Euclidean, and the grid relaxation's
-  /// largest (the scale of its exact moves).
+  /// smallest over its moves (the one scale of every move without anchor_move_scales).
   double euclidUnitsPerCell() const { return euclid_per_cell_; }
   double gridAnchorUnitsPerCell() const { return grid_anchor_per_cell_; }
   /// The grid relaxation's scale per move of gridMoves(anchor_connectivity), in that order.
