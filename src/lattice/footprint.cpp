@@ -115,6 +115,14 @@ bool containsOrigin(const std::vector<std::array<double, 2>>& poly) {
 
 }  // namespace
 
+void RobotFootprint::checkFitsMap(int width, int height, double resolution) const {
+  if (2.0 * inscribed_radius <= std::min(width, height) * resolution) return;
+  std::ostringstream m;
+  m << "its inscribed circle (radius " << inscribed_radius << " m) is wider than the map ("
+    << width * resolution << " x " << height * resolution << " m): no pose on it is collision-free";
+  robotError(m.str());
+}
+
 RobotFootprint RobotFootprint::fromConfig(const LatticeConfig& config) {
   RobotFootprint f;
   if (config.robot.footprint.empty()) {

@@ -145,16 +145,7 @@ LatticeGraph::LatticeGraph(std::shared_ptr<const GridMap> map, const LatticeConf
 void LatticeGraph::checkRobotSize(const GraphLimits& limits) const {
   const GridMap& m = *map_;
   const double res = m.resolution;
-  // A round robot's inscribed radius is its radius (footprint_ holds the 16-gon around it).
-  const double inscribed =
-      config_.robot.footprint.empty() ? config_.robot.radius : footprint_.inscribed_radius;
-  const double side = std::min(m.width, m.height) * res;
-  if (2.0 * inscribed > side) {
-    fail(LatticeError::Kind::kRobot, "robot footprint: its inscribed circle (radius " +
-                                         str(inscribed) + " m) is wider than the map (" +
-                                         str(m.width * res) + " x " + str(m.height * res) +
-                                         " m): no pose on it is collision-free");
-  }
+  footprint_.checkFitsMap(m.width, m.height, res);
   // The cells a footprint sweeps lie within its circumscribed radius of the centre's path:
   // at most a disc plus a band along the path (cells: the radius grown by a cell's diagonal).
   double swept = 0.0;

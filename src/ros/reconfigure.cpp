@@ -232,13 +232,8 @@ bool latticeBuilds(const PlannerParams& params, const lat::GridMap* map, std::st
     const double res = map->resolution;
     // The one check of a build that depends on the map's size, made here against the current
     // map: the probe below is only as large as the robot.
+    footprint.checkFitsMap(map->width, map->height, res);
     const double inscribed = footprint.inscribed_radius;
-    if (2.0 * inscribed > std::min(map->width, map->height) * res) {
-      *error = "robot footprint: its inscribed circle (radius " + exact(inscribed) +
-               " m) is wider than the current map (" + exact(map->width * res) + " x " +
-               exact(map->height * res) + " m): no pose on it is collision-free";
-      return false;
-    }
     // A free map of that resolution, just large enough for the robot: what else a build checks
     // (the primitives against the resolution, the footprint and its sweeps, the cost model) does
     // not depend on the map's cells.

@@ -222,7 +222,7 @@ TEST(Reconfigure, BadValuesAreRefusedWithAMessage) {
       // The test map is 30 x 20 m.
       {"a robot wider than the map",
        Change().set("footprint", "[[12, 12], [12, -12], [-12, -12], [-12, 12]]"),
-       {"refused", "footprint", "wider than the current map"}},
+       {"refused", "footprint", "wider than the map"}},
       {"a bad value among good ones", Change().set("w2", 3.0).set("eps", 0.9), {"refused", "eps"}},
   };
   for (const Case& c : cases) {

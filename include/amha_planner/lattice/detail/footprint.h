@@ -48,6 +48,10 @@ struct RobotFootprint {
 
   /// The polygon placed at `pose` (same units as the pose).
   std::vector<std::array<double, 2>> at(const Pose2D& pose) const;
+
+  /// Throws LatticeError (kRobot) if the inscribed circle is wider than a map of width x height
+  /// cells of `resolution` m: no pose on it is collision-free.
+  void checkFitsMap(int width, int height, double resolution) const;
 };
 
 /// The cells a primitive touches, relative to its start cell.
