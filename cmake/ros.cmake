@@ -6,6 +6,7 @@ find_library(AMHA_CLASS_LOADER_LIB class_loader REQUIRED)
 # The server: shared by the nodelet and the standalone node.
 add_library(amha_ros
   src/ros/conversions.cpp
+  src/ros/param_specs.cpp
   src/ros/planner_params.cpp
   src/ros/plan_queue.cpp
   src/ros/latest_job_runner.cpp
@@ -75,8 +76,10 @@ catkin_add_env_hooks(50.amha_planner_ament_prefix SHELLS sh DIRECTORY ${CMAKE_CU
 # are in robustness.cmake: ROS-free).
 amha_add_gtest(amha_ros_unit_tests
   SOURCES test/ros/conversions_test.cpp test/ros/request_conversion_test.cpp
-          test/ros/response_conversion_test.cpp
-  LIBS amha_ros)
+          test/ros/response_conversion_test.cpp test/ros/param_specs_test.cpp
+  LIBS amha_ros yaml-cpp)
+# param_specs_test holds config/planner.yaml and docs/ros.md to the parameter list.
+target_compile_definitions(amha_ros_unit_tests PRIVATE "AMHA_SOURCE_DIR=\"${CMAKE_SOURCE_DIR}\"")
 
 # rostest nodes (test/ros/*.test, run by scripts/test). Built with everything, into the devel
 # space, so that rostest finds them by package and name.

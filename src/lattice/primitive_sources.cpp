@@ -79,6 +79,10 @@ bool parsePrimitiveGenerator(const std::string& text, PrimitiveGenerator* genera
   return true;
 }
 
+const char* primitiveGeneratorName(PrimitiveGenerator generator) {
+  return generator == PrimitiveGenerator::kLegacy ? "legacy" : "near-minimal";
+}
+
 const char* motionModelName(MotionModel model) {
   switch (model) {
     case MotionModel::kDifferential:

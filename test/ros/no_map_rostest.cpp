@@ -101,7 +101,7 @@ TEST(PlannerParams, ValuesOutsideTheirRangesAreRefused) {
                                                            {"w1", 0.5},
                                                            {"w2", 1e308},
                                                            {"eps", 2e6},
-                                                           {"dw1", -1.0},
+                                                           {"dw1", -2.0},
                                                            {"dw2", 1e7},
                                                            {"eps_decrement", -0.5},
                                                            {"robot_radius", 50.0},
@@ -123,9 +123,11 @@ TEST(PlannerParams, ValuesOutsideTheirRangesAreRefused) {
   pnh.deleteParam("coarse_block");
   pnh.setParam("w1", 1e6);
   pnh.setParam("robot_radius", 10.0);
+  pnh.setParam("dw1", -1.0);  // the algorithm's preset, as in dynamic_reconfigure
   EXPECT_NO_THROW(loadPlannerParams(pnh));
   pnh.deleteParam("w1");
   pnh.deleteParam("robot_radius");
+  pnh.deleteParam("dw1");
 }
 
 TEST(PlannerNodeWithoutMap, BadMapsAreRefusedThenAGoodMapIsUsed) {

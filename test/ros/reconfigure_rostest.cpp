@@ -197,13 +197,16 @@ TEST(Reconfigure, BadValuesAreRefusedWithAMessage) {
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<Case> cases = {
-      {"a weight below 1", Change().set("w1", 0.5), {"refused", "/planner/w1", "nor >= 1"}},
+      {"a weight below 1", Change().set("w1", 0.5), {"refused", "/planner/w1", "neither -1"}},
       {"a NaN budget",
        Change().set("default_time_budget", nan),
        {"refused", "default_time_budget", "expected a number"}},
       {"an unknown algorithm",
        Change().set("algorithm", "dijkstra"),
        {"refused", "unknown algorithm 'dijkstra'"}},
+      {"an unknown motion model",
+       Change().set("motion_model", "tank"),
+       {"refused", "motion_model", "unknown motion model 'tank'"}},
       {"headings not a multiple of 8",
        Change().set("num_headings", 12),
        {"refused", "num_headings", "multiple of 8"}},

@@ -165,6 +165,8 @@ bool parseMotionModel(const std::string& text, MotionModel* model);
 const char* motionModelName(MotionModel model);
 /// "near-minimal", "legacy" -> PrimitiveGenerator; false for anything else.
 bool parsePrimitiveGenerator(const std::string& text, PrimitiveGenerator* generator);
+/// "near-minimal", "legacy".
+const char* primitiveGeneratorName(PrimitiveGenerator generator);
 
 }  // namespace lattice
 }  // namespace amha

@@ -107,11 +107,6 @@ PlannerParams loadPlannerParams(const ros::NodeHandle& pnh);
 bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_name, double w1,
                      double w2, amha::PlannerConfig* out, std::string* error);
 
-/// A footprint in costmap_2d's string form "[[x, y], ...]" ("" or "[]": none, a round robot).
-/// Throws std::invalid_argument naming the parameter (pnh's ~footprint) and the problem.
-std::vector<std::array<double, 2>> footprintFromString(const ros::NodeHandle& pnh,
-                                                       const std::string& text);
-
 /// Strips a leading '/' (tf2 frame ids have none).
 std::string normaliseFrame(const std::string& frame);
 

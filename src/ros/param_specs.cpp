@@ -1,0 +1,391 @@
+// The server's parameters in one list (see param_specs.h).
+#include "amha_planner/ros/param_specs.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <type_traits>
+#include <utility>
+
+#include "amha_planner/lattice/motion_primitives.h"
+
+namespace amha_planner {
+
+namespace {
+
+namespace lat = amha::lattice;
+using Type = ParamSpec::Type;
+
+/// The shortest decimal form that reads back as the same double.
+std::string exact(double v) {
+  char buf[40];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+// A footprint in costmap_2d's string form "[[x, y], [x, y], ...]" ("" or "[]": none) into
+// `out`, which a refused one leaves as it was.
+std::string parseFootprint(const std::string& text, std::vector<std::array<double, 2>>* out) {
+  std::string cleaned;
+  int depth = 0;
+  for (char c : text) {
+    if (c == '[') {
+      if (++depth > 2) return "too deeply nested: " + text;
+      cleaned += ' ';
+    } else if (c == ']') {
+      if (--depth < 0) return "unbalanced brackets: " + text;
+      cleaned += ' ';
+    } else {
+      cleaned += c == ',' ? ' ' : c;
+    }
+  }
+  if (depth != 0) return "unbalanced brackets: " + text;
+  std::istringstream in(cleaned);
+  std::vector<double> numbers;
+  double d;
+  while (in >> d) numbers.push_back(d);
+  if (!in.eof()) return "not a list of [x, y] points: " + text;
+  if (numbers.size() % 2 != 0) return "odd number of coordinates: " + text;
+  std::vector<std::array<double, 2>> points;
+  for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) {
+    if (!std::isfinite(numbers[i]) || !std::isfinite(numbers[i + 1]))
+      return "point " + std::to_string(i / 2) + " has a non-numeric coordinate";
+    points.push_back({numbers[i], numbers[i + 1]});
+  }
+  if (points.size() == 1 || points.size() == 2) return "needs at least 3 points";
+  *out = std::move(points);
+  return "";
+}
+
+std::string footprintText(const std::vector<std::array<double, 2>>& polygon) {
+  if (polygon.empty()) return "";
+  std::string s = "[";
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    s += (i ? ", [" : "[") + exact(polygon[i][0]) + ", " + exact(polygon[i][1]) + "]";
+  return s + "]";
+}
+
+// A field of PlannerParams: `field` is a lambda (auto& p) -> auto& { return p.member; }, for
+// const and mutable PlannerParams alike.
+template <class Field>
+using FieldType = std::decay_t<decltype(std::declval<Field>()(std::declval<PlannerParams&>()))>;
+
+// A number, an integer or a switch stored as it is; `check` (optional) refuses values the range
+// allows but the server cannot use.
+template <class Field>
+ParamSpec plain(const char* name, Field field, double min = 0.0, double max = 0.0,
+                std::function<std::string(double)> check = nullptr) {
+  using T = FieldType<Field>;
+  ParamSpec s;
+  s.name = name;
+  s.min = min;
+  s.max = max;
+  if constexpr (std::is_same_v<T, bool>) {
+    s.type = Type::kBool;
+    s.get = [field](const PlannerParams& p) { return ParamValue(field(p)); };
+    s.set = [field](const ParamValue& v, PlannerParams* p) {
+      field(*p) = std::get<bool>(v);
+      return std::string();
+    };
+  } else if constexpr (std::is_integral_v<T>) {
+    s.type = Type::kInt;
+    s.get = [field](const PlannerParams& p) { return ParamValue(static_cast<int>(field(p))); };
+    s.set = [field, check](const ParamValue& v, PlannerParams* p) {
+      const int i = std::get<int>(v);
+      if (check) {
+        const std::string why = check(i);
+        if (!why.empty()) return why;
+      }
+      field(*p) = static_cast<T>(i);
+      return std::string();
+    };
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    s.type = Type::kString;
+    s.get = [field](const PlannerParams& p) { return ParamValue(field(p)); };
+    s.set = [field](const ParamValue& v, PlannerParams* p) {
+      field(*p) = std::get<std::string>(v);
+      return std::string();
+    };
+  } else {
+    static_assert(std::is_same_v<T, double>, "a parameter is a bool, an integer, a double or text");
+    s.type = Type::kDouble;
+    s.get = [field](const PlannerParams& p) { return ParamValue(field(p)); };
+    s.set = [field](const ParamValue& v, PlannerParams* p) {
+      field(*p) = std::get<double>(v);
+      return std::string();
+    };
+  }
+  return s;
+}
+
+// A weight whose -1 means the algorithm's preset.
+template <class Field>
+ParamSpec weight(const char* name, Field field, double min) {
+  ParamSpec s = plain(name, field, min, amha::kMaxWeight);
+  s.minus_one_is_preset = true;
+  return s;
+}
+
+// One of a few names, stored as an enum: `parse` and `print` convert, `names` lists them.
+template <class Field, class Enum = FieldType<Field>>
+ParamSpec choice(const char* name, Field field, bool (*parse)(const std::string&, Enum*),
+                 std::string (*print)(Enum), const char* what, const char* names) {
+  ParamSpec s;
+  s.name = name;
+  s.type = Type::kString;
+  s.get = [field, print](const PlannerParams& p) { return ParamValue(print(field(p))); };
+  s.set = [field, parse, what, names](const ParamValue& v, PlannerParams* p) {
+    const std::string& text = std::get<std::string>(v);
+    if (parse(text, &field(*p))) return std::string();
+    return std::string("unknown ") + what + " '" + text + "' (" + names + ")";
+  };
+  return s;
+}
+
+ParamSpec startUpOnly(ParamSpec s) {
+  s.reconfigurable = false;
+  return s;
+}
+
+bool parseInadmissible(const std::string& text, lat::LatticeConfig::Inadmissible* out) {
+  if (text != "kinematic" && text != "paper") return false;
+  *out = text == "paper" ? lat::LatticeConfig::Inadmissible::kPaper
+                         : lat::LatticeConfig::Inadmissible::kKinematic;
+  return true;
+}
+
+std::string inadmissibleName(lat::LatticeConfig::Inadmissible k) {
+  return k == lat::LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
+}
+std::string algorithmText(amha::Algorithm a) { return amha::algorithmName(a); }
+std::string scheduleText(amha::QueueSchedule s) { return amha::scheduleName(s); }
+std::string weightScheduleText(amha::WeightSchedule s) { return amha::weightScheduleName(s); }
+std::string motionModelText(lat::MotionModel m) { return lat::motionModelName(m); }
+std::string generatorText(lat::PrimitiveGenerator g) { return lat::primitiveGeneratorName(g); }
+
+// A frame id without its leading '/' (tf2's have none), never empty.
+template <class Field>
+ParamSpec frame(const char* name, Field field) {
+  ParamSpec s = startUpOnly(plain(name, field));
+  s.set = [field](const ParamValue& v, PlannerParams* p) {
+    const std::string f = normaliseFrame(std::get<std::string>(v));
+    if (f.empty()) return std::string("must not be empty");
+    field(*p) = f;
+    return std::string();
+  };
+  return s;
+}
+
+std::vector<ParamSpec> makeSpecs() {
+  constexpr double kHuge = 1e6;
+  constexpr int kMaxCount = 1 << 30;
+  const auto multiple_of_8 = [](double n) {
+    return std::fmod(n, 8.0) == 0.0 ? "" : exact(n) + " is not a multiple of 8";
+  };
+  const auto eight_or_16 = [](double n) {
+    return n == 8.0 || n == 16.0 ? "" : exact(n) + " is not 8 or 16";
+  };
+  ParamSpec footprint;
+  footprint.name = "footprint";
+  footprint.type = Type::kString;
+  footprint.get = [](const PlannerParams& p) {
+    return ParamValue(footprintText(p.lattice.robot.footprint));
+  };
+  footprint.set = [](const ParamValue& v, PlannerParams* p) {
+    return parseFootprint(std::get<std::string>(v), &p->lattice.robot.footprint);
+  };
+  // Robots of a few metres at most: a larger one (a building-sized disc) only fits a map of
+  // kilometres, and its sweeps are refused on fine maps anyway (LatticeGraph, kMaxSweptCells).
+  // The map decides the rest when it comes: a robot wider than it is refused, and NO_MAP says so.
+  return {
+      footprint,
+      plain(
+          "robot_radius", [](auto& p) -> auto& { return p.lattice.robot.radius; }, 1e-3,
+          kMaxRobotRadius),
+      plain(
+          "mprim_file", [](auto& p) -> auto& { return p.lattice.motion.mprim_file; }),
+      choice(
+          "primitive_generator", [](auto& p) -> auto& { return p.lattice.motion.generator; },
+          lat::parsePrimitiveGenerator, generatorText, "generator", "near-minimal, legacy"),
+      choice(
+          "motion_model", [](auto& p) -> auto& { return p.lattice.motion.model; },
+          lat::parseMotionModel, motionModelText, "motion model", "diff, ackermann, omni"),
+      plain(
+          "turning_radius", [](auto& p) -> auto& { return p.lattice.motion.turning_radius; }, 1e-3,
+          kMaxTurningRadius),
+      plain(
+          "num_headings", [](auto& p) -> auto& { return p.lattice.motion.num_headings; }, 8, 1024,
+          multiple_of_8),
+      plain(
+          "allow_reverse", [](auto& p) -> auto& { return p.lattice.motion.allow_reverse; }),
+      plain(
+          "reverse_penalty", [](auto& p) -> auto& { return p.lattice.cost.reverse_multiplier; },
+          1e-3, kHuge),
+      plain(
+          "turn_in_place", [](auto& p) -> auto& { return p.lattice.motion.turn_in_place; }),
+      plain(
+          "nominal_speed", [](auto& p) -> auto& { return p.lattice.cost.nominal_speed; }, 1e-3,
+          100.0),
+      plain(
+          "time_to_turn_45", [](auto& p) -> auto& { return p.lattice.cost.time_to_turn_45; }, 0.0,
+          1000.0),
+      plain(
+          "lethal_threshold", [](auto& p) -> auto& { return p.occupancy.lethal_threshold; }, 1,
+          100),
+      plain(
+          "unknown_is_free", [](auto& p) -> auto& { return p.occupancy.unknown_is_free; }),
+      // The lattice refuses more (LatticeGraph's config check).
+      plain(
+          "cost_penalty", [](auto& p) -> auto& { return p.lattice.cost.penalty; }, 0.0, 1e4),
+      startUpOnly(plain(
+          "max_map_cells", [](auto& p) -> auto& { return p.max_map_cells; }, 1, kMaxCount)),
+      choice(
+          "algorithm", [](auto& p) -> auto& { return p.algorithm; }, amha::parseAlgorithm,
+          algorithmText, "algorithm", "amha, mha, ara, ana, wastar, astar"),
+      plain(
+          "num_inadmissible",
+          [](auto& p) -> auto& { return p.lattice.heuristics.num_inadmissible; }, 0, 3),
+      plain(
+          "grid_anchor", [](auto& p) -> auto& { return p.lattice.heuristics.grid_anchor; }),
+      plain(
+          "coarse_anchor", [](auto& p) -> auto& { return p.lattice.heuristics.coarse_anchor; }),
+      plain(
+          "coarse_block", [](auto& p) -> auto& { return p.lattice.heuristics.coarse_block; }, 0,
+          lat::kMaxCoarseBlock),
+      plain(
+          "kinematic_radius",
+          [](auto& p) -> auto& { return p.lattice.heuristics.kinematic_radius; }, 0.0, 100.0),
+      plain(
+          "anchor_connectivity",
+          [](auto& p) -> auto& { return p.lattice.heuristics.anchor_connectivity; }, 8, 16,
+          eight_or_16),
+      choice(
+          "inadmissible_heuristics",
+          [](auto& p) -> auto& { return p.lattice.heuristics.inadmissible; }, parseInadmissible,
+          inadmissibleName, "kind of inadmissible heuristics", "kinematic, paper"),
+      plain(
+          "anchor_turn_term",
+          [](auto& p) -> auto& { return p.lattice.heuristics.anchor_turn_term; }),
+      plain(
+          "inflate_heading_terms",
+          [](auto& p) -> auto& { return p.lattice.heuristics.inflate_heading_terms; }),
+      plain(
+          "backward_search", [](auto& p) -> auto& { return p.lattice.backward_search; }),
+      plain(
+          "heuristic_cache_size", [](auto& p) -> auto& { return p.lattice.cache.size; }, 1, 64),
+      plain(
+          "repair_heuristics", [](auto& p) -> auto& { return p.lattice.cache.repair; }),
+      weight(
+          "w1", [](auto& p) -> auto& { return p.w1; }, 1.0),
+      weight(
+          "w2", [](auto& p) -> auto& { return p.w2; }, 1.0),
+      choice(
+          "weight_schedule", [](auto& p) -> auto& { return p.weight_schedule; },
+          amha::parseWeightSchedule, weightScheduleText, "schedule", "certified, decrement"),
+      plain(
+          "certified_ratio", [](auto& p) -> auto& { return p.certified_ratio; }, 0.0, 0.999),
+      plain(
+          "certified_split", [](auto& p) -> auto& { return p.certified_split; }, 0.0, 1.0),
+      plain(
+          "final_gap", [](auto& p) -> auto& { return p.final_gap; }, 0.0, 1e3),
+      plain(
+          "publish_within_iterations",
+          [](auto& p) -> auto& { return p.publish_within_iterations; }),
+      plain(
+          "stall_expansions", [](auto& p) -> auto& { return p.stall_expansions; }, 0, kMaxCount),
+      plain(
+          "stall_w1", [](auto& p) -> auto& { return p.stall_w1; }, 1.0, amha::kMaxWeight),
+      plain(
+          "stall_mid_w1", [](auto& p) -> auto& { return p.stall_mid_w1; }, 1.0, amha::kMaxWeight),
+      plain(
+          "stall_mid_expansions", [](auto& p) -> auto& { return p.stall_mid_expansions; }, 0,
+          kMaxCount),
+      weight(
+          "dw1", [](auto& p) -> auto& { return p.dw1; }, 0.0),
+      weight(
+          "dw2", [](auto& p) -> auto& { return p.dw2; }, 0.0),
+      choice(
+          "queue_schedule", [](auto& p) -> auto& { return p.queue_schedule; }, amha::parseSchedule,
+          scheduleText, "schedule", "rr, dts"),
+      weight(
+          "eps", [](auto& p) -> auto& { return p.eps; }, 1.0),
+      weight(
+          "eps_decrement", [](auto& p) -> auto& { return p.eps_decrement; }, 0.0),
+      plain(
+          "default_time_budget", [](auto& p) -> auto& { return p.default_time_budget; }, 1e-3,
+          kHuge),
+      plain(
+          "ignore_goal_heading", [](auto& p) -> auto& { return p.ignore_goal_heading; }),
+      plain(
+          "start_tolerance", [](auto& p) -> auto& { return p.start_tolerance; }, 0.0, 1e3),
+      plain(
+          "start_escape_penalty", [](auto& p) -> auto& { return p.start_escape_penalty; }, 1.0,
+          1e3),
+      plain(
+          "smooth_path", [](auto& p) -> auto& { return p.smooth_path; }),
+      plain(
+          "max_memory_mb", [](auto& p) -> auto& { return p.max_memory_mb; }, 1.0, 1e7),
+      frame(
+          "global_frame", [](auto& p) -> auto& { return p.global_frame; }),
+      frame(
+          "robot_base_frame", [](auto& p) -> auto& { return p.robot_base_frame; }),
+      plain(
+          "tf_timeout", [](auto& p) -> auto& { return p.tf_timeout; }, 0.0, 60.0),
+      startUpOnly(plain(
+          "max_queued_requests", [](auto& p) -> auto& { return p.max_queued_requests; }, 0, 64)),
+      // malloc's process-wide mmap threshold is set once (freed_memory.h).
+      startUpOnly(plain(
+          "release_freed_memory", [](auto& p) -> auto& { return p.release_freed_memory; })),
+      plain(
+          "marker_spacing", [](auto& p) -> auto& { return p.marker_spacing; }, 0.01, 1e3),
+  };
+}
+
+}  // namespace
+
+const std::vector<ParamSpec>& paramSpecs() {
+  static const std::vector<ParamSpec> specs = makeSpecs();
+  return specs;
+}
+
+std::string paramText(const ParamValue& value) {
+  switch (value.index()) {
+    case 0:
+      return std::get<bool>(value) ? "true" : "false";
+    case 1:
+      return std::to_string(std::get<int>(value));
+    case 2:
+      return exact(std::get<double>(value));
+    default:
+      return std::get<std::string>(value);
+  }
+}
+
+std::string setParam(const ParamSpec& spec, const ParamValue& value, PlannerParams* p) {
+  const std::size_t expected = static_cast<std::size_t>(spec.type);
+  ParamValue v = value;
+  // An integer where a double is expected (YAML's 5 for 5.0) is that double.
+  if (spec.type == Type::kDouble && v.index() == 1) v = static_cast<double>(std::get<int>(v));
+  if (v.index() != expected) {
+    static const char* const kinds[] = {"true or false", "an integer", "a number", "text"};
+    return std::string("expected ") + kinds[expected] + ", got " + paramText(value);
+  }
+  if (spec.type == Type::kInt || spec.type == Type::kDouble) {
+    const double d = spec.type == Type::kInt ? std::get<int>(v) : std::get<double>(v);
+    if (!std::isfinite(d)) return "expected a number, got " + exact(d);
+    const bool in_range = d >= spec.min && d <= spec.max;
+    if (spec.minus_one_is_preset && !in_range && d != -1.0) {
+      return exact(d) + " is neither -1 (the algorithm's preset) nor in [" + exact(spec.min) +
+             ", " + exact(spec.max) + "]";
+    }
+    if (!spec.minus_one_is_preset && !in_range)
+      return exact(d) + " is outside [" + exact(spec.min) + ", " + exact(spec.max) + "]";
+  }
+  return spec.set(v, p);
+}
+
+}  // namespace amha_planner
