@@ -5,6 +5,7 @@
 // logged message and leave the parameters as they were.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -284,6 +285,29 @@ TEST(Reconfigure, RobotAndMapParametersRebuildForTheNextRequest) {
   const double eighths = yawOf(res.path.poses.back().pose) / (M_PI / 4);
   EXPECT_NEAR(eighths, std::round(eighths), 1e-6) << "a heading of the 8";
   apply(Change().set("num_headings", 16));
+  // The motion model: a diff-drive robot turns around on the spot, an Ackermann one (which
+  // never turns in place) must drive a loop.
+  const auto facing_up = pose(8.0, 4.0, M_PI / 2, "map"),
+             facing_down = pose(8.0, 4.0, -M_PI / 2, "map");
+  auto farthest = [](const nav_msgs::Path& path) {  // from where it starts
+    double d = 0.0;
+    for (const auto& p : path.poses) {
+      d = std::max(d, std::hypot(p.pose.position.x - path.poses[0].pose.position.x,
+                                 p.pose.position.y - path.poses[0].pose.position.y));
+    }
+    return d;
+  };
+  res = plan(facing_up, facing_down);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  ASSERT_FALSE(res.path.poses.empty());
+  EXPECT_LT(farthest(res.path), 0.01) << "a diff-drive robot turns on the spot";
+  apply(Change().set("motion_model", "ackermann"));
+  res = plan(facing_up, facing_down);
+  ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
+  ASSERT_FALSE(res.path.poses.empty());
+  EXPECT_GT(farthest(res.path), 0.4) << "an Ackermann robot drives a loop";
+  EXPECT_EQ(checkPathCollisionFree(res.path, softMap(), testFootprint(), kLethal), "");
+  apply(Change().set("motion_model", "diff"));
   res = plan(kStart, kRoomGoal);
   ASSERT_EQ(res.status, Status::SUCCESS) << res.message;
   EXPECT_DOUBLE_EQ(res.cost, cost_before) << "the original configuration again";
