@@ -625,6 +625,7 @@ PlannerConfig defaultPlannerConfig(Algorithm algorithm) {
     c.stall_mid_w1 = 1.1;
     c.stall_mid_expansions = 5000;
     c.stall_w1 = 2.0;
+    c.proof_anchor_only = true;
   }
   return c;
 }

@@ -180,6 +180,10 @@ ParamSpec frame(const char* name, Field field) {
   return s;
 }
 
+// A lambda (auto& p) -> auto& { return p.member; }, as plain(), choice() and frame() take fields.
+#define AMHA_FIELD(member) \
+  [](auto& p) -> auto& { return p.member; }
+
 std::vector<ParamSpec> makeSpecs() {
   constexpr double kHuge = 1e6;
   constexpr int kMaxCount = 1 << 30;
@@ -203,147 +207,77 @@ std::vector<ParamSpec> makeSpecs() {
   // The map decides the rest when it comes: a robot wider than it is refused, and NO_MAP says so.
   return {
       footprint,
-      plain(
-          "robot_radius", [](auto& p) -> auto& { return p.lattice.robot.radius; }, 1e-3,
-          kMaxRobotRadius),
-      plain(
-          "mprim_file", [](auto& p) -> auto& { return p.lattice.motion.mprim_file; }),
-      choice(
-          "primitive_generator", [](auto& p) -> auto& { return p.lattice.motion.generator; },
-          lat::parsePrimitiveGenerator, generatorText, "generator", "near-minimal, legacy"),
-      choice(
-          "motion_model", [](auto& p) -> auto& { return p.lattice.motion.model; },
-          lat::parseMotionModel, motionModelText, "motion model", "diff, ackermann, omni"),
-      plain(
-          "turning_radius", [](auto& p) -> auto& { return p.lattice.motion.turning_radius; }, 1e-3,
-          kMaxTurningRadius),
-      plain(
-          "num_headings", [](auto& p) -> auto& { return p.lattice.motion.num_headings; }, 8, 1024,
-          multiple_of_8),
-      plain(
-          "allow_reverse", [](auto& p) -> auto& { return p.lattice.motion.allow_reverse; }),
-      plain(
-          "reverse_penalty", [](auto& p) -> auto& { return p.lattice.cost.reverse_multiplier; },
-          1e-3, kHuge),
-      plain(
-          "turn_in_place", [](auto& p) -> auto& { return p.lattice.motion.turn_in_place; }),
-      plain(
-          "nominal_speed", [](auto& p) -> auto& { return p.lattice.cost.nominal_speed; }, 1e-3,
-          100.0),
-      plain(
-          "time_to_turn_45", [](auto& p) -> auto& { return p.lattice.cost.time_to_turn_45; }, 0.0,
-          1000.0),
-      plain(
-          "lethal_threshold", [](auto& p) -> auto& { return p.occupancy.lethal_threshold; }, 1,
-          100),
-      plain(
-          "unknown_is_free", [](auto& p) -> auto& { return p.occupancy.unknown_is_free; }),
+      plain("robot_radius", AMHA_FIELD(lattice.robot.radius), 1e-3, kMaxRobotRadius),
+      plain("mprim_file", AMHA_FIELD(lattice.motion.mprim_file)),
+      choice("primitive_generator", AMHA_FIELD(lattice.motion.generator),
+             lat::parsePrimitiveGenerator, generatorText, "generator", "near-minimal, legacy"),
+      choice("motion_model", AMHA_FIELD(lattice.motion.model), lat::parseMotionModel,
+             motionModelText, "motion model", "diff, ackermann, omni"),
+      plain("turning_radius", AMHA_FIELD(lattice.motion.turning_radius), 1e-3, kMaxTurningRadius),
+      plain("num_headings", AMHA_FIELD(lattice.motion.num_headings), 8, 1024, multiple_of_8),
+      plain("allow_reverse", AMHA_FIELD(lattice.motion.allow_reverse)),
+      plain("reverse_penalty", AMHA_FIELD(lattice.cost.reverse_multiplier), 1e-3, kHuge),
+      plain("turn_in_place", AMHA_FIELD(lattice.motion.turn_in_place)),
+      plain("nominal_speed", AMHA_FIELD(lattice.cost.nominal_speed), 1e-3, 100.0),
+      plain("time_to_turn_45", AMHA_FIELD(lattice.cost.time_to_turn_45), 0.0, 1000.0),
+      plain("lethal_threshold", AMHA_FIELD(occupancy.lethal_threshold), 1, 100),
+      plain("unknown_is_free", AMHA_FIELD(occupancy.unknown_is_free)),
       // The lattice refuses more (LatticeGraph's config check).
-      plain(
-          "cost_penalty", [](auto& p) -> auto& { return p.lattice.cost.penalty; }, 0.0, 1e4),
-      startUpOnly(plain(
-          "max_map_cells", [](auto& p) -> auto& { return p.max_map_cells; }, 1, kMaxCount)),
-      choice(
-          "algorithm", [](auto& p) -> auto& { return p.algorithm; }, amha::parseAlgorithm,
-          algorithmText, "algorithm", "amha, mha, ara, ana, wastar, astar"),
-      plain(
-          "num_inadmissible",
-          [](auto& p) -> auto& { return p.lattice.heuristics.num_inadmissible; }, 0, 3),
-      plain(
-          "grid_anchor", [](auto& p) -> auto& { return p.lattice.heuristics.grid_anchor; }),
-      plain(
-          "coarse_anchor", [](auto& p) -> auto& { return p.lattice.heuristics.coarse_anchor; }),
-      plain(
-          "coarse_block", [](auto& p) -> auto& { return p.lattice.heuristics.coarse_block; }, 0,
-          lat::kMaxCoarseBlock),
-      plain(
-          "kinematic_radius",
-          [](auto& p) -> auto& { return p.lattice.heuristics.kinematic_radius; }, 0.0, 100.0),
-      plain(
-          "anchor_connectivity",
-          [](auto& p) -> auto& { return p.lattice.heuristics.anchor_connectivity; }, 8, 16,
-          eight_or_16),
-      choice(
-          "inadmissible_heuristics",
-          [](auto& p) -> auto& { return p.lattice.heuristics.inadmissible; }, parseInadmissible,
-          inadmissibleName, "kind of inadmissible heuristics", "kinematic, paper"),
-      plain(
-          "anchor_turn_term",
-          [](auto& p) -> auto& { return p.lattice.heuristics.anchor_turn_term; }),
-      plain(
-          "inflate_heading_terms",
-          [](auto& p) -> auto& { return p.lattice.heuristics.inflate_heading_terms; }),
-      plain(
-          "backward_search", [](auto& p) -> auto& { return p.lattice.backward_search; }),
-      plain(
-          "heuristic_cache_size", [](auto& p) -> auto& { return p.lattice.cache.size; }, 1, 64),
-      plain(
-          "repair_heuristics", [](auto& p) -> auto& { return p.lattice.cache.repair; }),
-      weight(
-          "w1", [](auto& p) -> auto& { return p.w1; }, 1.0),
-      weight(
-          "w2", [](auto& p) -> auto& { return p.w2; }, 1.0),
-      choice(
-          "weight_schedule", [](auto& p) -> auto& { return p.weight_schedule; },
-          amha::parseWeightSchedule, weightScheduleText, "schedule", "certified, decrement"),
-      plain(
-          "certified_ratio", [](auto& p) -> auto& { return p.certified_ratio; }, 0.0, 0.999),
-      plain(
-          "certified_split", [](auto& p) -> auto& { return p.certified_split; }, 0.0, 1.0),
-      plain(
-          "final_gap", [](auto& p) -> auto& { return p.final_gap; }, 0.0, 1e3),
-      plain(
-          "publish_within_iterations",
-          [](auto& p) -> auto& { return p.publish_within_iterations; }),
-      plain(
-          "stall_expansions", [](auto& p) -> auto& { return p.stall_expansions; }, 0, kMaxCount),
-      plain(
-          "stall_w1", [](auto& p) -> auto& { return p.stall_w1; }, 1.0, amha::kMaxWeight),
-      plain(
-          "stall_mid_w1", [](auto& p) -> auto& { return p.stall_mid_w1; }, 1.0, amha::kMaxWeight),
-      plain(
-          "stall_mid_expansions", [](auto& p) -> auto& { return p.stall_mid_expansions; }, 0,
-          kMaxCount),
-      weight(
-          "dw1", [](auto& p) -> auto& { return p.dw1; }, 0.0),
-      weight(
-          "dw2", [](auto& p) -> auto& { return p.dw2; }, 0.0),
-      choice(
-          "queue_schedule", [](auto& p) -> auto& { return p.queue_schedule; }, amha::parseSchedule,
-          scheduleText, "schedule", "rr, dts"),
-      weight(
-          "eps", [](auto& p) -> auto& { return p.eps; }, 1.0),
-      weight(
-          "eps_decrement", [](auto& p) -> auto& { return p.eps_decrement; }, 0.0),
-      plain(
-          "default_time_budget", [](auto& p) -> auto& { return p.default_time_budget; }, 1e-3,
-          kHuge),
-      plain(
-          "ignore_goal_heading", [](auto& p) -> auto& { return p.ignore_goal_heading; }),
-      plain(
-          "start_tolerance", [](auto& p) -> auto& { return p.start_tolerance; }, 0.0, 1e3),
-      plain(
-          "start_escape_penalty", [](auto& p) -> auto& { return p.start_escape_penalty; }, 1.0,
-          1e3),
-      plain(
-          "smooth_path", [](auto& p) -> auto& { return p.smooth_path; }),
-      plain(
-          "max_memory_mb", [](auto& p) -> auto& { return p.max_memory_mb; }, 1.0, 1e7),
-      frame(
-          "global_frame", [](auto& p) -> auto& { return p.global_frame; }),
-      frame(
-          "robot_base_frame", [](auto& p) -> auto& { return p.robot_base_frame; }),
-      plain(
-          "tf_timeout", [](auto& p) -> auto& { return p.tf_timeout; }, 0.0, 60.0),
-      startUpOnly(plain(
-          "max_queued_requests", [](auto& p) -> auto& { return p.max_queued_requests; }, 0, 64)),
+      plain("cost_penalty", AMHA_FIELD(lattice.cost.penalty), 0.0, 1e4),
+      startUpOnly(plain("max_map_cells", AMHA_FIELD(max_map_cells), 1, kMaxCount)),
+      choice("algorithm", AMHA_FIELD(algorithm), amha::parseAlgorithm, algorithmText, "algorithm",
+             "amha, mha, ara, ana, wastar, astar"),
+      plain("num_inadmissible", AMHA_FIELD(lattice.heuristics.num_inadmissible), 0, 3),
+      plain("grid_anchor", AMHA_FIELD(lattice.heuristics.grid_anchor)),
+      plain("coarse_anchor", AMHA_FIELD(lattice.heuristics.coarse_anchor)),
+      plain("coarse_block", AMHA_FIELD(lattice.heuristics.coarse_block), 0, lat::kMaxCoarseBlock),
+      plain("kinematic_radius", AMHA_FIELD(lattice.heuristics.kinematic_radius), 0.0, 100.0),
+      plain("anchor_connectivity", AMHA_FIELD(lattice.heuristics.anchor_connectivity), 8, 16,
+            eight_or_16),
+      choice("inadmissible_heuristics", AMHA_FIELD(lattice.heuristics.inadmissible),
+             parseInadmissible, inadmissibleName, "kind of inadmissible heuristics",
+             "kinematic, paper"),
+      plain("anchor_turn_term", AMHA_FIELD(lattice.heuristics.anchor_turn_term)),
+      plain("inflate_heading_terms", AMHA_FIELD(lattice.heuristics.inflate_heading_terms)),
+      plain("backward_search", AMHA_FIELD(lattice.backward_search)),
+      plain("heuristic_cache_size", AMHA_FIELD(lattice.cache.size), 1, 64),
+      plain("repair_heuristics", AMHA_FIELD(lattice.cache.repair)),
+      weight("w1", AMHA_FIELD(w1), 1.0),
+      weight("w2", AMHA_FIELD(w2), 1.0),
+      choice("weight_schedule", AMHA_FIELD(weight_schedule), amha::parseWeightSchedule,
+             weightScheduleText, "schedule", "certified, decrement"),
+      plain("certified_ratio", AMHA_FIELD(certified_ratio), 0.0, 0.999),
+      plain("certified_split", AMHA_FIELD(certified_split), 0.0, 1.0),
+      plain("final_gap", AMHA_FIELD(final_gap), 0.0, 1e3),
+      plain("publish_within_iterations", AMHA_FIELD(publish_within_iterations)),
+      plain("stall_expansions", AMHA_FIELD(stall_expansions), 0, kMaxCount),
+      plain("stall_w1", AMHA_FIELD(stall_w1), 1.0, amha::kMaxWeight),
+      plain("stall_mid_w1", AMHA_FIELD(stall_mid_w1), 1.0, amha::kMaxWeight),
+      plain("stall_mid_expansions", AMHA_FIELD(stall_mid_expansions), 0, kMaxCount),
+      plain("proof_anchor_only", AMHA_FIELD(proof_anchor_only)),
+      weight("dw1", AMHA_FIELD(dw1), 0.0),
+      weight("dw2", AMHA_FIELD(dw2), 0.0),
+      choice("queue_schedule", AMHA_FIELD(queue_schedule), amha::parseSchedule, scheduleText,
+             "schedule", "rr, dts"),
+      weight("eps", AMHA_FIELD(eps), 1.0),
+      weight("eps_decrement", AMHA_FIELD(eps_decrement), 0.0),
+      plain("default_time_budget", AMHA_FIELD(default_time_budget), 1e-3, kHuge),
+      plain("ignore_goal_heading", AMHA_FIELD(ignore_goal_heading)),
+      plain("start_tolerance", AMHA_FIELD(start_tolerance), 0.0, 1e3),
+      plain("start_escape_penalty", AMHA_FIELD(start_escape_penalty), 1.0, 1e3),
+      plain("smooth_path", AMHA_FIELD(smooth_path)),
+      plain("max_memory_mb", AMHA_FIELD(max_memory_mb), 1.0, 1e7),
+      frame("global_frame", AMHA_FIELD(global_frame)),
+      frame("robot_base_frame", AMHA_FIELD(robot_base_frame)),
+      plain("tf_timeout", AMHA_FIELD(tf_timeout), 0.0, 60.0),
+      startUpOnly(plain("max_queued_requests", AMHA_FIELD(max_queued_requests), 0, 64)),
       // malloc's process-wide mmap threshold is set once (freed_memory.h).
-      startUpOnly(plain(
-          "release_freed_memory", [](auto& p) -> auto& { return p.release_freed_memory; })),
-      plain(
-          "marker_spacing", [](auto& p) -> auto& { return p.marker_spacing; }, 0.01, 1e3),
+      startUpOnly(plain("release_freed_memory", AMHA_FIELD(release_freed_memory))),
+      plain("marker_spacing", AMHA_FIELD(marker_spacing), 0.01, 1e3),
   };
 }
+
+#undef AMHA_FIELD
 
 }  // namespace
 

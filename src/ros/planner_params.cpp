@@ -129,6 +129,7 @@ bool searchConfigFor(const PlannerParams& params, const std::string& algorithm_n
     c.stall_w1 = params.stall_w1;
     c.stall_mid_w1 = params.stall_mid_w1;
     c.stall_mid_expansions = static_cast<std::uint64_t>(params.stall_mid_expansions);
+    c.proof_anchor_only = params.proof_anchor_only;
   }
   // ~eps and ~eps_decrement are ARA*'s and weighted A*'s w1 and dw1; a negative parameter is
   // unset, and the request's w1, w2 (0: unset) come last.

@@ -25,8 +25,8 @@
 //
 // Beyond the paper (each off with the paper's preset): publishing cheaper paths and tighter
 // certified bounds within an iteration (improvePath, publish_improvements), going on with a
-// larger w1 when the first iteration stalls (stall_expansions), and skipping iterations that
-// would stop at once (nextWeights).
+// larger w1 when the first iteration stalls (stall_expansions), skipping iterations that
+// would stop at once (nextWeights), and proving with the anchor alone (proof_anchor_only).
 #include "mha_engine.h"
 
 #include <algorithm>
@@ -77,6 +77,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   const InterruptScope interrupt_scope(*this);
   w1_ = opt_.w1;
   w2_ = opt_.w2;
+  anchor_only_ = anchorOnlyAt(w1_, w2_);
   small_keys_ = problem.smallIntegerKeys();
   integer_keys_ = problem.integerKeys();
   resetQueues();
@@ -108,7 +109,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   if (h(start, kAnchor) != kInfiniteHeuristic) {
     const QueueEntry k0 = key(start, kAnchor);
     pushOpen(kAnchor, k0);
-    for (std::size_t i = 1; i < nh(); ++i) {
+    for (std::size_t i = 1; i < queuesInUse(); ++i) {
       const QueueEntry ki = key(start, i);
       if (admits(ki, k0.f) && pushOpen(i, ki) && dts_) schedule_.noteQueued(i, ki.h);
     }
@@ -210,15 +211,16 @@ void MhaEngine::generate(StateId s) {
   if (flags(s) & kGenerated) return;
   // Straight into the record: a copy of a few words through a buffer became a libc memmove
   // call (2 % of the time on Korf's 15-puzzles).
-  problem_->heuristics(s, records_.heuristicsOut(s), nh());
-  if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), nh());
+  // The heuristics the queues in use need (anchor_only_: h0 alone).
+  problem_->heuristics(s, records_.heuristicsOut(s), queuesInUse());
+  if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), queuesInUse());
   flags(s) |= kGenerated;
   ++generated_;
 }
 
 bool MhaEngine::improvePath() {
   const StateId goal = problem_->goal();
-  const std::size_t n_inad = nh() - 1;
+  const std::size_t n_inad = queuesInUse() - 1;
   for (;;) {
     if (stopped()) return false;  // e.g. a queue could not grow: OPEN is incomplete
     if (!cleanTop(kAnchor)) return true;
@@ -325,7 +327,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     const QueueEntry k0 = key(t, kAnchor);
     if (!pushOpen(kAnchor, k0)) return;
     if (f & kClosedInad) continue;
-    for (std::size_t i = 1; i < nh(); ++i) {
+    for (std::size_t i = 1; i < queuesInUse(); ++i) {
       const QueueEntry ki = key(t, i);
       if (admits(ki, k0.f)) {
         if (!pushOpen(i, ki)) return;
@@ -347,6 +349,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // reported, and nothing has changed since. clearClosed() empties INCONS at the end.
   w1_ = next_w1;
   w2_ = next_w2;
+  anchor_only_ = anchorOnlyAt(w1_, w2_);
   // The pass that takes the members out of their queues also measures their keys' span at the
   // new w1, from which the queues' kind follows (denseKeys).
   const bool measure = integer_keys_ && !small_keys_;  // only the per-key buckets need it
@@ -372,7 +375,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // line 19's test, so either choice is correct; filtering keeps OPEN_i identical to what
   // Expand would have built with the new weights (one invariant, checked by the tests), and
   // keeps states an inadmissible heuristic rules out (h_i = infinity) out of its queue.
-  for (std::size_t i = 1; i < nh(); ++i) {
+  for (std::size_t i = 1; i < queuesInUse(); ++i) {
     for (std::size_t k = 0; k < members_.size(); ++k) {  // exactly OPEN_0's entries
       if (interrupted(k)) return false;
       const StateId s = members_[k];

@@ -27,7 +27,8 @@ struct MhaEngineOptions {
   double stall_w1 = 5.0;
   double stall_mid_w1 = 0.0;
   std::uint64_t stall_mid_expansions = 0;
-  bool anytime = true;  // false: one ImprovePath (MHA*, weighted A*, A*)
+  bool proof_anchor_only = false;  // PlannerConfig::proof_anchor_only
+  bool anytime = true;             // false: one ImprovePath (MHA*, weighted A*, A*)
   std::size_t max_inadmissible = 0;
   bool stop_when_certified_optimal = true;
   bool check_invariants = false;
@@ -79,6 +80,14 @@ class MhaEngine : public SearchBase {
   // member iff its state's bit is set and its key is the state's current key; anything else is
   // stale and skipped.
   std::size_t nh() const { return records_.heuristics(); }  // in use, anchor included
+  // The queues the current iteration keeps, anchor included: nh(), or 1 (anchor_only_).
+  std::size_t queuesInUse() const { return anchor_only_ ? 1 : nh(); }
+  // Whether an iteration at these weights is a proof with the anchor alone: at w1 = w2 = 1 an
+  // inadmissible queue may expand only states whose key is at most OPEN_0's minimum, so the
+  // iteration is A* on h0 but for those, and its bound holds without them.
+  bool anchorOnlyAt(double w1, double w2) const {
+    return opt_.proof_anchor_only && w1 <= 1.0 && w2 <= 1.0;
+  }
   Cost g(StateId s) const { return records_.g(s); }
   void setG(StateId s, Cost g) { records_.setG(s, g); }
   void setParent(StateId s, StateId p) { records_.setParent(s, p); }
@@ -156,6 +165,7 @@ class MhaEngine : public SearchBase {
   bool small_keys_ = false;    // the problem allows bucket queues nested per key and h
   bool integer_keys_ = false;  // ... or one stack per key
   int iteration_ = 0;
+  bool anchor_only_ = false;    // this iteration queues and computes h0 alone (anchorOnlyAt)
   int stall_rung_ = 0;          // the stall rule: 0 before it, 1 at stall_mid_w1, 2 done
   std::size_t next_queue_ = 1;  // the inadmissible queue the next step tries (1..N)
   bool dts_ = false;            // opt_.schedule == kDts and there are inadmissible queues

@@ -68,6 +68,7 @@ std::unique_ptr<Planner> makePlanner(const PlannerConfig& c) {
   o.stall_w1 = c.stall_w1;
   o.stall_mid_w1 = c.stall_mid_w1;
   o.stall_mid_expansions = c.stall_mid_expansions;
+  o.proof_anchor_only = c.proof_anchor_only;
   if (c.stall_expansions > 0) checkWeight(c.stall_w1, "stall_w1");
   if (c.stall_expansions > 0 && c.stall_mid_w1 != 0.0) checkWeight(c.stall_mid_w1, "stall_mid_w1");
   const bool certified = c.weight_schedule == WeightSchedule::kCertified;

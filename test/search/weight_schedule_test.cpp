@@ -4,9 +4,12 @@
 // weight once made the unreached goal's sentinel pass the stop test: a false "no path").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
+#include <map>
 #include <string>
 
+#include "../../src/search/mha_engine.h"
 #include "test_graphs.h"
 
 namespace amha {
@@ -241,6 +244,67 @@ TEST(WeightSchedule, OutOfRangeParametersAreRefused) {
   }
   c.stall_mid_w1 = 0.0;  // no middle rung
   EXPECT_NO_THROW(makePlanner(c));
+}
+
+// An explicit graph that records, per ImprovePath iteration (told by the engine's observer), the
+// most heuristics the search asked for at once.
+struct CountingGraph : ExplicitGraph {
+  int iteration = 0;
+  std::map<int, std::size_t> most_heuristics;
+  void heuristics(StateId s, HeuristicValue* out, std::size_t count) override {
+    std::size_t& most = most_heuristics[iteration];
+    most = std::max(most, count);
+    ExplicitGraph::heuristics(s, out, count);
+  }
+};
+
+// proof_anchor_only: the last iteration (w1 = w2 = 1) expands from OPEN_0 alone and computes h0
+// alone, every solution stays within its bounds and the last is optimal. Off, Algorithm 1's
+// last iteration expands from the inadmissible queues too (on some graphs), and computes them.
+TEST(WeightSchedule, TheProofWithTheAnchorAloneIsAStarOnH0) {
+  int proofs = 0, inadmissible_in_proof_off = 0;
+  for (ExplicitGraph& base : graphs()) {
+    const Cost optimal = testing::distancesToGoal(base)[base.s_start];
+    if (optimal >= kInfiniteCost || base.n_heuristics < 2) continue;
+    for (const bool anchor_only : {true, false}) {
+      CountingGraph g;
+      static_cast<ExplicitGraph&>(g) = base;
+      detail::MhaEngineOptions o;
+      o.w1 = 3.0;
+      o.w2 = 2.0;
+      o.weight_schedule = WeightSchedule::kCertified;
+      o.certified_ratio = 0.0;  // straight to the proof
+      o.publish_improvements = true;
+      o.max_inadmissible = 100;
+      o.check_invariants = true;
+      o.proof_anchor_only = anchor_only;
+      detail::MhaEngine engine(o);
+      std::map<int, int> inadmissible_expansions;  // per iteration
+      engine.setObserver([&](StateId, std::size_t queue, int it) {
+        g.iteration = it;
+        if (queue > 0) ++inadmissible_expansions[it];
+      });
+      const SearchResult r = engine.run(g, SearchLimits(), {});
+      ASSERT_TRUE(r.hasSolution());
+      EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
+      EXPECT_EQ(r.best().cost, optimal);
+      for (const Solution& s : r.solutions) EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
+      const Solution& last = r.solutions.back();
+      if (last.w1 > 1.0 || last.w2 > 1.0) continue;  // certified optimal before the proof
+      if (anchor_only) {
+        ++proofs;
+        EXPECT_EQ(inadmissible_expansions[last.iteration], 0);
+        EXPECT_LE(g.most_heuristics[last.iteration], 1u) << "an inadmissible heuristic computed";
+      } else {
+        inadmissible_in_proof_off += inadmissible_expansions[last.iteration] > 0;
+        if (g.most_heuristics.count(last.iteration)) {
+          EXPECT_EQ(g.most_heuristics[last.iteration], g.n_heuristics);
+        }
+      }
+    }
+  }
+  EXPECT_GT(proofs, 10);
+  EXPECT_GT(inadmissible_in_proof_off, 0) << "Algorithm 1's proof never used its other queues";
 }
 
 }  // namespace

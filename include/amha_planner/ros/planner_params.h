@@ -50,6 +50,8 @@ struct PlannerParams {
       amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_mid_w1;
   int stall_mid_expansions = static_cast<int>(
       amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).stall_mid_expansions);
+  bool proof_anchor_only =
+      amha::lattice::defaultPlannerConfig(amha::Algorithm::kAmhaStar).proof_anchor_only;
 
   double default_time_budget = 5.0;  ///< seconds, when a request gives 0
   /// Publish smoothed paths (PathSmoother): PlanSolution::path smoothed, lattice_path the raw.

@@ -114,6 +114,11 @@ struct PlannerConfig {
   /// crawls, and its path is closer to the optimum than stall_w1's.
   double stall_mid_w1 = 0.0;
   std::uint64_t stall_mid_expansions = 0;
+  /// A-MHA*: the last iteration (w1 = w2 = 1, the proof) keeps and computes the anchor alone, as
+  /// A* on h0. At w2 = 1 an inadmissible queue may expand only states whose key is at most
+  /// OPEN_0's minimum, so the proof expands nearly the same states either way; without the other
+  /// queues it computes, queues and tests none of their heuristics. Off: Algorithm 1 as written.
+  bool proof_anchor_only = false;
   /// Use at most this many inadmissible heuristics of the problem (all by default).
   std::size_t max_inadmissible = std::numeric_limits<std::size_t>::max();
   /// Order in which the inadmissible queues are tried (A-MHA*, MHA*).
