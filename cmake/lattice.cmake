@@ -64,6 +64,11 @@ add_test(NAME amha_plan_refusals
                  ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml
                  ${CMAKE_SOURCE_DIR}/test/lattice/data/nav2_diff_8_headings.json)
 
+# amha plan's switches keep the lattice preset's values when absent; --json records the search.
+add_test(NAME amha_plan_search_flags
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_search_flags_test.sh $<TARGET_FILE:amha>
+                 ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+
 # Contradicting flags are refused with a usage error (exit code 2), not silently resolved.
 add_test(NAME amha_plan_refuses_both_turn_flags
          COMMAND ${CMAKE_SOURCE_DIR}/test/cli/plan_turn_flags_test.sh $<TARGET_FILE:amha>)

@@ -94,10 +94,17 @@ int planMain(int argc, char** argv) {
       ->check(weightRange());
   app.add_option("--stall-mid-expansions", stall_mid_expansions,
                  "amha/ara: ... for this many more expansions, then --stall-w1 (0: no such rung)");
-  std::optional<bool> publish_within;
-  app.add_flag("--publish-within", publish_within,
-               "publish cheaper paths as soon as an iteration finds them (the default for amha; "
-               "--publish-within=false: only at the end of each iteration)");
+  // Switches whose default is the preset's: a CLI11 flag bound to std::optional<bool> holds
+  // false when absent, so each is a bool read only if given (--x or --x=false).
+  bool publish_within = false, proof_anchor_only = false;
+  CLI::Option* publish_within_opt = app.add_flag(
+      "--publish-within", publish_within,
+      "publish cheaper paths as soon as an iteration finds them (the default for amha; "
+      "--publish-within=false: only at the end of each iteration)");
+  CLI::Option* proof_anchor_only_opt =
+      app.add_flag("--proof-anchor-only", proof_anchor_only,
+                   "amha: prove (w1 = w2 = 1) with the anchor alone, as A* (the default; "
+                   "--proof-anchor-only=false: every queue, as the paper's Algorithm 1)");
   app.add_option("--eps", eps, "initial epsilon for ara/wastar (same as --w1), in [1, 1e6]")
       ->check(weightRange());
   app.add_option("--json", json_path,
@@ -136,7 +143,8 @@ int planMain(int argc, char** argv) {
   pc.certified_ratio = certified_ratio.value_or(pc.certified_ratio);
   pc.certified_split = certified_split.value_or(pc.certified_split);
   pc.final_gap = final_gap.value_or(pc.final_gap);
-  pc.publish_within_iterations = publish_within.value_or(pc.publish_within_iterations);
+  if (publish_within_opt->count() > 0) pc.publish_within_iterations = publish_within;
+  if (proof_anchor_only_opt->count() > 0) pc.proof_anchor_only = proof_anchor_only;
   // An expansion count given as a number (so that 1e4 reads): false, with a message, if it is
   // not one in [0, 1e15].
   auto expansions = [](const char* option, const std::optional<double>& v, std::uint64_t* out) {
@@ -310,6 +318,7 @@ int planMain(int argc, char** argv) {
         run["lattice_path"] = poses_json(r.solutions.back().poses);
       }
       run["heuristic_seconds"] = r.heuristic_seconds;
+      run["search"] = searchConfigToJson(pc);
       nlohmann::json extra = {{"start", {start.x, start.y, start.theta}},
                               {"goal", {goal.x, goal.y, goal.theta}},
                               {"cost_units_per_metre", lattice::kCostUnitsPerMetre}};

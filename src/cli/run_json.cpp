@@ -47,6 +47,24 @@ nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
           {"solutions", sols}};
 }
 
+nlohmann::json searchConfigToJson(const PlannerConfig& c) {
+  return {{"w1", c.w1},
+          {"w2", c.w2},
+          {"dw1", c.dw1},
+          {"dw2", c.dw2},
+          {"weight_schedule", weightScheduleName(c.weight_schedule)},
+          {"certified_ratio", c.certified_ratio},
+          {"certified_split", c.certified_split},
+          {"final_gap", c.final_gap},
+          {"publish_within_iterations", c.publish_within_iterations},
+          {"stall_expansions", c.stall_expansions},
+          {"stall_w1", c.stall_w1},
+          {"stall_mid_w1", c.stall_mid_w1},
+          {"stall_mid_expansions", c.stall_mid_expansions},
+          {"proof_anchor_only", c.proof_anchor_only},
+          {"queue_schedule", scheduleName(c.schedule)}};
+}
+
 void writeRunsJson(const std::string& path, const nlohmann::json& runs,
                    const nlohmann::json& extra) {
   nlohmann::json doc = extra.is_object() ? extra : nlohmann::json::object();

@@ -26,6 +26,10 @@ nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
 nlohmann::json runToJson(const std::string& instance, Algorithm algorithm,
                          const SearchResult& result, std::optional<Cost> optimal_cost);
 
+/// The search settings a run used (`amha plan --json` writes them as the run's "search"), so
+/// that a result file says what produced it.
+nlohmann::json searchConfigToJson(const PlannerConfig& c);
+
 /// Writes {"runs": runs, ...extra} to `path` (pretty-printed). Throws std::runtime_error.
 void writeRunsJson(const std::string& path, const nlohmann::json& runs,
                    const nlohmann::json& extra = nlohmann::json::object());
