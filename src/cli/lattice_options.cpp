@@ -219,11 +219,9 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   if (o.coarse_block) c.heuristics.coarse_block = *o.coarse_block;
   if (o.kinematic_radius) c.heuristics.kinematic_radius = *o.kinematic_radius;
   if (o.anchor_connectivity) c.heuristics.anchor_connectivity = *o.anchor_connectivity;
-  if (o.inadmissible_kind) {
-    c.heuristics.inadmissible = *o.inadmissible_kind == "paper"
-                                    ? lattice::LatticeConfig::Inadmissible::kPaper
-                                    : lattice::LatticeConfig::Inadmissible::kKinematic;
-  }
+  // CLI::IsMember has already refused anything else.
+  if (o.inadmissible_kind)
+    lattice::parseInadmissible(*o.inadmissible_kind, &c.heuristics.inadmissible);
   c.heuristics.anchor_turn_term =
       o.turn_term;  // --no-turn-term is the default (the two exclude each other)
   c.heuristics.inflate_heading_terms = o.inflate_heading_terms;

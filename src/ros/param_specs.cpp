@@ -74,8 +74,8 @@ std::string footprintText(const std::vector<std::array<double, 2>>& polygon) {
 template <class Field>
 using FieldType = std::decay_t<decltype(std::declval<Field>()(std::declval<PlannerParams&>()))>;
 
-// A number, an integer or a switch stored as it is; `check` (optional) refuses values the range
-// allows but the server cannot use.
+// A number, an integer, a switch or text stored as it is; `check` (optional, integers) refuses
+// values the range allows but the server cannot use.
 template <class Field>
 ParamSpec plain(const char* name, Field field, double min = 0.0, double max = 0.0,
                 std::function<std::string(double)> check = nullptr) {
@@ -84,38 +84,26 @@ ParamSpec plain(const char* name, Field field, double min = 0.0, double max = 0.
   s.name = name;
   s.min = min;
   s.max = max;
-  if constexpr (std::is_same_v<T, bool>) {
-    s.type = Type::kBool;
-    s.get = [field](const PlannerParams& p) { return ParamValue(field(p)); };
-    s.set = [field](const ParamValue& v, PlannerParams* p) {
-      field(*p) = std::get<bool>(v);
-      return std::string();
-    };
-  } else if constexpr (std::is_integral_v<T>) {
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    // Integers of any width travel as int (their ranges fit it).
     s.type = Type::kInt;
     s.get = [field](const PlannerParams& p) { return ParamValue(static_cast<int>(field(p))); };
     s.set = [field, check](const ParamValue& v, PlannerParams* p) {
       const int i = std::get<int>(v);
-      if (check) {
-        const std::string why = check(i);
-        if (!why.empty()) return why;
-      }
-      field(*p) = static_cast<T>(i);
-      return std::string();
-    };
-  } else if constexpr (std::is_same_v<T, std::string>) {
-    s.type = Type::kString;
-    s.get = [field](const PlannerParams& p) { return ParamValue(field(p)); };
-    s.set = [field](const ParamValue& v, PlannerParams* p) {
-      field(*p) = std::get<std::string>(v);
-      return std::string();
+      std::string why = check ? check(i) : std::string();
+      if (why.empty()) field(*p) = static_cast<T>(i);
+      return why;
     };
   } else {
-    static_assert(std::is_same_v<T, double>, "a parameter is a bool, an integer, a double or text");
-    s.type = Type::kDouble;
+    static_assert(
+        std::is_same_v<T, bool> || std::is_same_v<T, double> || std::is_same_v<T, std::string>,
+        "a parameter is a bool, an integer, a double or text");
+    s.type = std::is_same_v<T, bool>     ? Type::kBool
+             : std::is_same_v<T, double> ? Type::kDouble
+                                         : Type::kString;
     s.get = [field](const PlannerParams& p) { return ParamValue(field(p)); };
     s.set = [field](const ParamValue& v, PlannerParams* p) {
-      field(*p) = std::get<double>(v);
+      field(*p) = std::get<T>(v);
       return std::string();
     };
   }
@@ -133,11 +121,13 @@ ParamSpec weight(const char* name, Field field, double min) {
 // One of a few names, stored as an enum: `parse` and `print` convert, `names` lists them.
 template <class Field, class Enum = FieldType<Field>>
 ParamSpec choice(const char* name, Field field, bool (*parse)(const std::string&, Enum*),
-                 std::string (*print)(Enum), const char* what, const char* names) {
+                 const char* (*print)(Enum), const char* what, const char* names) {
   ParamSpec s;
   s.name = name;
   s.type = Type::kString;
-  s.get = [field, print](const PlannerParams& p) { return ParamValue(print(field(p))); };
+  s.get = [field, print](const PlannerParams& p) {
+    return ParamValue(std::string(print(field(p))));
+  };
   s.set = [field, parse, what, names](const ParamValue& v, PlannerParams* p) {
     const std::string& text = std::get<std::string>(v);
     if (parse(text, &field(*p))) return std::string();
@@ -150,22 +140,6 @@ ParamSpec startUpOnly(ParamSpec s) {
   s.reconfigurable = false;
   return s;
 }
-
-bool parseInadmissible(const std::string& text, lat::LatticeConfig::Inadmissible* out) {
-  if (text != "kinematic" && text != "paper") return false;
-  *out = text == "paper" ? lat::LatticeConfig::Inadmissible::kPaper
-                         : lat::LatticeConfig::Inadmissible::kKinematic;
-  return true;
-}
-
-std::string inadmissibleName(lat::LatticeConfig::Inadmissible k) {
-  return k == lat::LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
-}
-std::string algorithmText(amha::Algorithm a) { return amha::algorithmName(a); }
-std::string scheduleText(amha::QueueSchedule s) { return amha::scheduleName(s); }
-std::string weightScheduleText(amha::WeightSchedule s) { return amha::weightScheduleName(s); }
-std::string motionModelText(lat::MotionModel m) { return lat::motionModelName(m); }
-std::string generatorText(lat::PrimitiveGenerator g) { return lat::primitiveGeneratorName(g); }
 
 // A frame id without its leading '/' (tf2's have none), never empty.
 template <class Field>
@@ -210,9 +184,10 @@ std::vector<ParamSpec> makeSpecs() {
       plain("robot_radius", AMHA_FIELD(lattice.robot.radius), 1e-3, kMaxRobotRadius),
       plain("mprim_file", AMHA_FIELD(lattice.motion.mprim_file)),
       choice("primitive_generator", AMHA_FIELD(lattice.motion.generator),
-             lat::parsePrimitiveGenerator, generatorText, "generator", "near-minimal, legacy"),
+             lat::parsePrimitiveGenerator, lat::primitiveGeneratorName, "generator",
+             "near-minimal, legacy"),
       choice("motion_model", AMHA_FIELD(lattice.motion.model), lat::parseMotionModel,
-             motionModelText, "motion model", "diff, ackermann, omni"),
+             lat::motionModelName, "motion model", "diff, ackermann, omni"),
       plain("turning_radius", AMHA_FIELD(lattice.motion.turning_radius), 1e-3, kMaxTurningRadius),
       plain("num_headings", AMHA_FIELD(lattice.motion.num_headings), 8, 1024, multiple_of_8),
       plain("allow_reverse", AMHA_FIELD(lattice.motion.allow_reverse)),
@@ -225,8 +200,8 @@ std::vector<ParamSpec> makeSpecs() {
       // The lattice refuses more (LatticeGraph's config check).
       plain("cost_penalty", AMHA_FIELD(lattice.cost.penalty), 0.0, 1e4),
       startUpOnly(plain("max_map_cells", AMHA_FIELD(max_map_cells), 1, kMaxCount)),
-      choice("algorithm", AMHA_FIELD(algorithm), amha::parseAlgorithm, algorithmText, "algorithm",
-             "amha, mha, ara, ana, wastar, astar"),
+      choice("algorithm", AMHA_FIELD(algorithm), amha::parseAlgorithm, amha::algorithmName,
+             "algorithm", "amha, mha, ara, ana, wastar, astar"),
       plain("num_inadmissible", AMHA_FIELD(lattice.heuristics.num_inadmissible), 0, 3),
       plain("grid_anchor", AMHA_FIELD(lattice.heuristics.grid_anchor)),
       plain("coarse_anchor", AMHA_FIELD(lattice.heuristics.coarse_anchor)),
@@ -235,7 +210,7 @@ std::vector<ParamSpec> makeSpecs() {
       plain("anchor_connectivity", AMHA_FIELD(lattice.heuristics.anchor_connectivity), 8, 16,
             eight_or_16),
       choice("inadmissible_heuristics", AMHA_FIELD(lattice.heuristics.inadmissible),
-             parseInadmissible, inadmissibleName, "kind of inadmissible heuristics",
+             lat::parseInadmissible, lat::inadmissibleName, "kind of inadmissible heuristics",
              "kinematic, paper"),
       plain("anchor_turn_term", AMHA_FIELD(lattice.heuristics.anchor_turn_term)),
       plain("inflate_heading_terms", AMHA_FIELD(lattice.heuristics.inflate_heading_terms)),
@@ -245,7 +220,7 @@ std::vector<ParamSpec> makeSpecs() {
       weight("w1", AMHA_FIELD(w1), 1.0),
       weight("w2", AMHA_FIELD(w2), 1.0),
       choice("weight_schedule", AMHA_FIELD(weight_schedule), amha::parseWeightSchedule,
-             weightScheduleText, "schedule", "certified, decrement"),
+             amha::weightScheduleName, "schedule", "certified, decrement"),
       plain("certified_ratio", AMHA_FIELD(certified_ratio), 0.0, 0.999),
       plain("certified_split", AMHA_FIELD(certified_split), 0.0, 1.0),
       plain("final_gap", AMHA_FIELD(final_gap), 0.0, 1e3),
@@ -257,7 +232,7 @@ std::vector<ParamSpec> makeSpecs() {
       plain("proof_anchor_only", AMHA_FIELD(proof_anchor_only)),
       weight("dw1", AMHA_FIELD(dw1), 0.0),
       weight("dw2", AMHA_FIELD(dw2), 0.0),
-      choice("queue_schedule", AMHA_FIELD(queue_schedule), amha::parseSchedule, scheduleText,
+      choice("queue_schedule", AMHA_FIELD(queue_schedule), amha::parseSchedule, amha::scheduleName,
              "schedule", "rr, dts"),
       weight("eps", AMHA_FIELD(eps), 1.0),
       weight("eps_decrement", AMHA_FIELD(eps_decrement), 0.0),

@@ -20,7 +20,7 @@ namespace {
   throw std::invalid_argument("parameter " + pnh.resolveName(name) + ": " + problem);
 }
 
-double toDouble(const XmlRpc::XmlRpcValue& v, bool* ok) {
+double numberIn(const XmlRpc::XmlRpcValue& v, bool* ok) {
   *ok = true;
   if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
   if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
@@ -39,7 +39,7 @@ std::vector<std::array<double, 2>> footprintFromList(const ros::NodeHandle& pnh,
       bad(pnh, "footprint", "point " + std::to_string(i) + " is not an [x, y] pair");
     }
     bool okx = false, oky = false;
-    const double x = toDouble(pt[0], &okx), y = toDouble(pt[1], &oky);
+    const double x = numberIn(pt[0], &okx), y = numberIn(pt[1], &oky);
     if (!okx || !oky || !std::isfinite(x) || !std::isfinite(y)) {
       bad(pnh, "footprint", "point " + std::to_string(i) + " has a non-numeric coordinate");
     }

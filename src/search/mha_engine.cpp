@@ -77,7 +77,6 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   const InterruptScope interrupt_scope(*this);
   w1_ = opt_.w1;
   w2_ = opt_.w2;
-  anchor_only_ = anchorOnlyAt(w1_, w2_);
   small_keys_ = problem.smallIntegerKeys();
   integer_keys_ = problem.integerKeys();
   resetQueues();
@@ -211,7 +210,7 @@ void MhaEngine::generate(StateId s) {
   if (flags(s) & kGenerated) return;
   // Straight into the record: a copy of a few words through a buffer became a libc memmove
   // call (2 % of the time on Korf's 15-puzzles).
-  // The heuristics the queues in use need (anchor_only_: h0 alone).
+  // The heuristics the queues in use need (h0 alone at a proof with the anchor alone).
   problem_->heuristics(s, records_.heuristicsOut(s), queuesInUse());
   if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), queuesInUse());
   flags(s) |= kGenerated;
@@ -308,6 +307,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     if (!claim(e.to)) return;  // memory cap: improvePath stops
   }
   for (const Edge& e : succ_) records_.prefetch(e.to, true);
+  const std::size_t queues = queuesInUse();
   for (const Edge& e : succ_) {
     const StateId t = e.to;
     generate(t);
@@ -327,7 +327,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
     const QueueEntry k0 = key(t, kAnchor);
     if (!pushOpen(kAnchor, k0)) return;
     if (f & kClosedInad) continue;
-    for (std::size_t i = 1; i < queuesInUse(); ++i) {
+    for (std::size_t i = 1; i < queues; ++i) {
       const QueueEntry ki = key(t, i);
       if (admits(ki, k0.f)) {
         if (!pushOpen(i, ki)) return;
@@ -349,7 +349,6 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // reported, and nothing has changed since. clearClosed() empties INCONS at the end.
   w1_ = next_w1;
   w2_ = next_w2;
-  anchor_only_ = anchorOnlyAt(w1_, w2_);
   // The pass that takes the members out of their queues also measures their keys' span at the
   // new w1, from which the queues' kind follows (denseKeys).
   const bool measure = integer_keys_ && !small_keys_;  // only the per-key buckets need it

@@ -80,8 +80,9 @@ class MhaEngine : public SearchBase {
   // member iff its state's bit is set and its key is the state's current key; anything else is
   // stale and skipped.
   std::size_t nh() const { return records_.heuristics(); }  // in use, anchor included
-  // The queues the current iteration keeps, anchor included: nh(), or 1 (anchor_only_).
-  std::size_t queuesInUse() const { return anchor_only_ ? 1 : nh(); }
+  // The queues the current iteration keeps, anchor included: nh(), or 1 at a proof with the
+  // anchor alone (anchorOnlyAt).
+  std::size_t queuesInUse() const { return anchorOnlyAt(w1_, w2_) ? 1 : nh(); }
   // Whether an iteration at these weights is a proof with the anchor alone: at w1 = w2 = 1 an
   // inadmissible queue may expand only states whose key is at most OPEN_0's minimum, so the
   // iteration is A* on h0 but for those, and its bound holds without them.
@@ -165,7 +166,6 @@ class MhaEngine : public SearchBase {
   bool small_keys_ = false;    // the problem allows bucket queues nested per key and h
   bool integer_keys_ = false;  // ... or one stack per key
   int iteration_ = 0;
-  bool anchor_only_ = false;    // this iteration queues and computes h0 alone (anchorOnlyAt)
   int stall_rung_ = 0;          // the stall rule: 0 before it, 1 at stall_mid_w1, 2 done
   std::size_t next_queue_ = 1;  // the inadmissible queue the next step tries (1..N)
   bool dts_ = false;            // opt_.schedule == kDts and there are inadmissible queues

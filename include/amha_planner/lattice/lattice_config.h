@@ -152,5 +152,17 @@ struct LatticeConfig {
   bool backward_search = false;
 };
 
+/// "kinematic", "paper" -> LatticeConfig::Inadmissible; false for anything else.
+inline bool parseInadmissible(const std::string& text, LatticeConfig::Inadmissible* out) {
+  if (text != "kinematic" && text != "paper") return false;
+  *out = text == "paper" ? LatticeConfig::Inadmissible::kPaper
+                         : LatticeConfig::Inadmissible::kKinematic;
+  return true;
+}
+/// "kinematic", "paper".
+inline const char* inadmissibleName(LatticeConfig::Inadmissible kind) {
+  return kind == LatticeConfig::Inadmissible::kPaper ? "paper" : "kinematic";
+}
+
 }  // namespace lattice
 }  // namespace amha
