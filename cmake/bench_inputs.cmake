@@ -22,3 +22,8 @@ add_test(NAME amha_map_random_is_seeded
 # --min-distance apart (validity and connectivity: amha_bench_inputs_tests).
 add_test(NAME amha_bench_queries_seeded_and_far_apart
          COMMAND ${CMAKE_SOURCE_DIR}/test/cli/bench_queries_seeded_test.sh $<TARGET_FILE:amha> ${CMAKE_SOURCE_DIR}/maps/willow_garage/willow-2010-02-18-0.10.yaml)
+
+# scripts/bench-vs-smac --report on synthetic result files: with --repeat, each query's time is
+# the median of its runs (Smac itself is built outside the repository and not needed here).
+add_test(NAME bench_vs_smac_report_medians
+         COMMAND ${CMAKE_SOURCE_DIR}/test/cli/bench_vs_smac_report_test.py ${CMAKE_SOURCE_DIR})
