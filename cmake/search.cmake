@@ -28,6 +28,7 @@ amha_add_gtest(amha_search_tests
     test/search/dts_schedule_test.cpp
     test/search/ana_star_test.cpp
     test/search/inflation_bases_test.cpp
+    test/search/heuristic_upgrade_test.cpp
   LIBS amha_search)
 
 if(AMHA_FUZZ)

@@ -82,6 +82,8 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   resetQueues();
   iteration_ = 0;
   stall_rung_ = 0;
+  stale_keys_ = false;
+  stale_states_ = false;
   dts_ = opt_.schedule == QueueSchedule::kDts && nh() > 1;
   next_queue_ = 1;
   if (dts_) {
@@ -207,12 +209,17 @@ void MhaEngine::nextWeights(double certified, double* next_w1, double* next_w2) 
 }
 
 void MhaEngine::generate(StateId s) {
-  if (flags(s) & kGenerated) return;
+  const std::uint32_t f = flags(s);
+  if ((f & kGenerated) && !(f & kStaleH)) return;
   // Straight into the record: a copy of a few words through a buffer became a libc memmove
   // call (2 % of the time on Korf's 15-puzzles).
   // The heuristics the queues in use need (h0 alone at a proof with the anchor alone).
   problem_->heuristics(s, records_.heuristicsOut(s), queuesInUse());
   if (records_.hasBases()) problem_->bases(s, records_.basesOut(s), queuesInUse());
+  if (f & kGenerated) {  // a stale state's values renewed (SearchProblem::upgradeHeuristics)
+    flags(s) &= ~static_cast<std::uint32_t>(kStaleH);
+    return;
+  }
   flags(s) |= kGenerated;
   ++generated_;
 }
@@ -252,6 +259,10 @@ bool MhaEngine::improvePath() {
       }
     }
     if (limitHit()) return false;
+    if (n_inad == 0 && w1_ <= 1.0 && (expansions_ & 1023) == 0 && problem_->upgradeHeuristics()) {
+      markHeuristicsStale();
+      stale_keys_ = true;
+    }
     // No path yet after the stall budget: on to an iteration with a larger w1, from OPEN_0 u
     // INCONS as line 38 would: stall_mid_w1 for stall_mid_expansions more (if set), then
     // stall_w1, each once.
@@ -281,6 +292,7 @@ bool MhaEngine::improvePath() {
     }
     const StateId s = open_[q].topId();
     open_[q].pop();
+    if (stale_keys_ && requeuedWithNewKey(s)) continue;
     // Choose the next step's inadmissible queue now: the next round tests the tops of OPEN_0
     // and of that queue against their records, so start loading those while s is expanded (if
     // expand() changes a top, the hint is merely wasted). DTS thus draws before s's reward is
@@ -349,6 +361,23 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // reported, and nothing has changed since. clearClosed() empties INCONS at the end.
   w1_ = next_w1;
   w2_ = next_w2;
+  // Better heuristics now: the iteration starts from OPEN_0 u INCONS as ever (its bound needs
+  // only h_0 consistent from here on), keyed with them; a state they prove cut off leaves.
+  if (problem_->upgradeHeuristics()) markHeuristicsStale();
+  stale_keys_ = false;  // every member is re-keyed below
+  if (stale_states_) {
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < members_.size(); ++k) {
+      const StateId s = members_[k];
+      generate(s);  // renews stale values (a no-op for the others)
+      if (h(s, kAnchor) != kInfiniteHeuristic) {
+        members_[kept++] = s;
+      } else {
+        clearAllOpen(s);
+      }
+    }
+    members_.resize(kept);
+  }
   // The pass that takes the members out of their queues also measures their keys' span at the
   // new w1, from which the queues' kind follows (denseKeys).
   const bool measure = integer_keys_ && !small_keys_;  // only the per-key buckets need it
@@ -389,6 +418,33 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   }
   clearClosed();
   incons_this_iteration_ = false;
+  return true;
+}
+
+void MhaEngine::markHeuristicsStale() {
+  stale_states_ = true;
+  for (std::size_t i = 0; i < used_; ++i) {
+    std::uint32_t& f = flags(static_cast<StateId>(i));
+    if (f & kGenerated) f |= kStaleH;
+  }
+}
+
+bool MhaEngine::requeuedWithNewKey(StateId s) {
+  // In an A* iteration after an upgrade (markHeuristicsStale), OPEN_0's keys were computed with
+  // the old h_0, each a lower bound of the state's new key (no value fell). The top is renewed
+  // when popped; if its key rose it goes back, else it is the minimum and is expanded. So the
+  // state expanded has the smallest new key: A* on the new h_0, whose every state expanded so
+  // far had its optimal g (both consistent), stays exact (SearchProblem::upgradeHeuristics).
+  if (!(flags(s) & kStaleH)) return false;
+  const double old_key = key(s, kAnchor).f;
+  generate(s);
+  if (h(s, kAnchor) == kInfiniteHeuristic) {  // now proven cut off from the goal
+    clearAllOpen(s);
+    return true;
+  }
+  const QueueEntry k0 = key(s, kAnchor);
+  if (k0.f <= old_key) return false;
+  pushOpen(kAnchor, k0);
   return true;
 }
 

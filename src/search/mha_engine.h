@@ -53,7 +53,7 @@ class MhaEngine : public SearchBase {
   static constexpr std::uint32_t kGenerated = StateRecords::kGenerated,
                                  kClosedAnch = StateRecords::kClosedAnch,
                                  kClosedInad = StateRecords::kClosedInad,
-                                 kIncons = StateRecords::kIncons;
+                                 kIncons = StateRecords::kIncons, kStaleH = StateRecords::kStaleH;
 
   bool improvePath();  // false if a limit stopped it
   void expand(StateId s, std::size_t queue);
@@ -69,7 +69,15 @@ class MhaEngine : public SearchBase {
   bool denseKeys(double lo, double hi) const;
   static constexpr double kMinKeyDensity = 0.1;
   static constexpr std::size_t kMinDensityMembers = 256;
-  void clearClosed();  // also empties INCONS
+  // SearchProblem::upgradeHeuristics: marks every generated state's cached heuristics stale
+  // (kStaleH), for generate() to recompute when the state is next generated or popped.
+  void markHeuristicsStale();
+  // Whether s, just popped from OPEN_0 in an A* iteration with stale heuristics, goes back with
+  // its new key instead of being expanded (the new key is larger).
+  bool requeuedWithNewKey(StateId s);
+  bool stale_keys_ = false;    // OPEN_0 may hold keys computed with stale heuristics
+  bool stale_states_ = false;  // some state may hold stale heuristics (kStaleH)
+  void clearClosed();          // also empties INCONS
   // Collects OPEN_0 u INCONS (finite h0) into members_, in id order, and returns the minimum
   // of g + h0 over them: a lower bound on the optimal cost.
   Cost collectOpen0AndIncons();

@@ -25,7 +25,15 @@ namespace detail {
 class StateRecords {
  public:
   // kIncons marks the INCONS list: closed by the anchor, g lowered since (no separate list).
-  enum Flag : std::uint32_t { kGenerated = 1, kClosedAnch = 2, kClosedInad = 4, kIncons = 8 };
+  // kStaleH: the cached heuristics predate SearchProblem::upgradeHeuristics (lower bounds of
+  // the new ones); the next generate() recomputes them.
+  enum Flag : std::uint32_t {
+    kGenerated = 1,
+    kClosedAnch = 2,
+    kClosedInad = 4,
+    kIncons = 8,
+    kStaleH = 16
+  };
 
   /// Lays the records out for `nh` heuristics (anchor included), with inflation bases or not.
   /// False (and nothing changes) if that is the current layout; true if it changed: every
@@ -107,7 +115,7 @@ class StateRecords {
 
  private:
   static constexpr std::size_t kHeaderWords = 4;
-  static constexpr std::size_t kFlagBits = 4, kFlagMembers = 32 - kFlagBits;
+  static constexpr std::size_t kFlagBits = 5, kFlagMembers = 32 - kFlagBits;
 
   std::uint32_t* rec(StateId s) { return rec_.data() + static_cast<std::size_t>(s) * stride_; }
   const std::uint32_t* rec(StateId s) const {

@@ -57,6 +57,15 @@ class SearchProblem {
   /// search may keep its queues as one stack of states per key value, ties newest first.
   virtual bool integerKeys() const { return smallIntegerKeys(); }
 
+  /// True, once per change, if the domain's heuristics have become better informed since the
+  /// search began (e.g. a table that a helper thread has completed): no value lower than before,
+  /// and h_0 still admissible and consistent. The search then recomputes the values it caches
+  /// and re-keys its queues. It asks when an iteration begins and, in an A* iteration (weight 1,
+  /// the anchor's queue alone), every 1024 expansions: A* stays exact across the change, since
+  /// every state it expanded before had its optimal g (h_0 was consistent) and every key after
+  /// it is the new one (docs/search.md, "Heuristics that improve during a search").
+  virtual bool upgradeHeuristics() { return false; }
+
   /// Bytes the domain holds for its states (hash tables, state storage); counted against the
   /// search's memory cap together with the search's own arrays.
   virtual std::size_t memoryBytes() const { return 0; }
