@@ -17,6 +17,7 @@ add_library(amha_lattice
   src/lattice/lattice_graph.cpp
   src/lattice/grid_moves.cpp
   src/lattice/heuristic_grids.cpp
+  src/lattice/displacement_grid.cpp
   src/lattice/coarse_lattice.cpp
   src/lattice/kinematic_table.cpp
   src/lattice/lattice_problem.cpp
@@ -103,6 +104,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/mprim_test.cpp
     test/lattice/footprint_test.cpp
     test/lattice/heuristics_test.cpp
+    test/lattice/displacement_grid_test.cpp
     test/lattice/planner_test.cpp
     test/lattice/incremental_map_test.cpp
     test/lattice/heuristic_repair_test.cpp

@@ -66,6 +66,10 @@ void LatticeOptions::addTo(CLI::App& app) {
                  "paper (the "
                  "paper's 8-connected Dijkstras alone)")
       ->check(CLI::IsMember({"kinematic", "paper"}));
+  app.add_flag("--displacement-grid", displacement_grid,
+               "add to the anchor the displacement grid (a 2-D cost-to-go over the primitives' "
+               "own moves, computed alongside the search from its first path): faster long "
+               "proofs, slower short ones");
   auto* with_turn = app.add_flag(
       "--turn-term", turn_term,
       "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
@@ -225,6 +229,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
   c.heuristics.anchor_turn_term =
       o.turn_term;  // --no-turn-term is the default (the two exclude each other)
   c.heuristics.inflate_heading_terms = o.inflate_heading_terms;
+  c.heuristics.displacement_grid = o.displacement_grid;
   c.backward_search = o.backward;
   return out;
 }

@@ -41,6 +41,7 @@ struct LatticeOptions {
   std::optional<std::string> inadmissible_kind;
   bool backward = false;
   bool inflate_heading_terms = false;
+  bool displacement_grid = false;
   bool turn_term = false;      // --no-turn-term, kept for old scripts, only restates the default
   PrimitiveOptions primitive;  // --primitive-generator, --motion-model, --reverse-penalty
 

@@ -9,7 +9,13 @@
 #include <list>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include "amha_planner/lattice/detail/displacement_grid.h"
 #include "amha_planner/lattice/detail/goal_tolerance.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/detail/lattice_problem.h"
@@ -23,6 +29,13 @@ struct LatticePlanner::Impl {
   std::shared_ptr<const GridMap> map;
   std::unique_ptr<LatticeGraph> graph;
   std::unique_ptr<HeuristicGridBuilder> builder;
+  /// The displacement grid's moves, levels and clearance (null: not wanted, or one core).
+  std::unique_ptr<DisplacementGrid> displacement;
+  void buildDisplacement() {
+    const LatticeConfig::Heuristics& h = graph->config().heuristics;
+    if (h.grid_anchor && h.displacement_grid && std::thread::hardware_concurrency() >= 2)
+      displacement.reset(new DisplacementGrid(*graph));
+  }
 
   /// Which grids: a goal (or, searching backward, a start) and which kinds were wanted.
   struct GoalKey {
@@ -237,6 +250,7 @@ LatticePlanner::LatticePlanner(std::shared_ptr<const GridMap> map, const Lattice
       new LatticeGraph(std::move(map), config, GraphLimits{&stop, limits.max_memory_bytes}));
   throwIfStopped(&stop, "heuristic tables");
   impl_->builder.reset(new HeuristicGridBuilder(*impl_->graph));
+  impl_->buildDisplacement();
 }
 
 LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<const GridMap> map,
@@ -245,6 +259,7 @@ LatticePlanner::LatticePlanner(const LatticePlanner& previous, std::shared_ptr<c
   impl_->map = map;
   impl_->graph.reset(new LatticeGraph(*previous.impl_->graph, std::move(map), changed));
   impl_->builder.reset(new HeuristicGridBuilder(*previous.impl_->builder, *impl_->graph));
+  impl_->buildDisplacement();
   if (impl_->graph->config().cache.repair)
     impl_->inheritGrids(*previous.impl_, impl_->graph->recomputed());
 }
@@ -538,6 +553,39 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     for (const StartEscape::Exit& e : escape->exits()) exits.emplace_back(e.state, e.cost);
     problem.startAtExits(exits);
   }
+  // The displacement grid, on a helper thread while the search runs: the search takes it up
+  // when it is complete (LatticeProblem::upgradeHeuristics), and stops it when it returns first.
+  // Only searches that can use it ask for it: A* (every 1024 expansions) at once, and the
+  // anytime ones (their later iterations and proof) from their first path on, which it would
+  // otherwise slow (by 8 % on Willow at 5 cm, competing with the search and the grids' helper).
+  std::shared_ptr<DisplacementField> field;
+  std::thread field_thread;
+  const Algorithm algo = algorithm.algorithm;
+  const bool anytime = algo == Algorithm::kAmhaStar || algo == Algorithm::kAraStar;
+  if (impl_->displacement && grids->grids[0] != nullptr && (anytime || algo == Algorithm::kAStar)) {
+    field = std::make_shared<DisplacementField>();
+    problem.setDisplacementField(field);
+  }
+  auto launch_field = [&, grid = impl_->displacement.get()] {
+    if (!field || field_thread.joinable()) return;
+    field_thread = std::thread([field = field, grid, to, from, backward, stop] {
+      // Below the search in priority: where the grids' helper still runs, it would slow both.
+      setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+      if (grid->compute(to.x, to.y, !backward, from.x, from.y, &field->bound, field.get(),
+                        &field->abandon, &stop))
+        field->ready.store(true, std::memory_order_release);
+    });
+  };
+  if (algo == Algorithm::kAStar) launch_field();
+  struct JoinField {
+    std::shared_ptr<DisplacementField>& field;
+    std::thread& thread;
+    ~JoinField() {
+      if (!thread.joinable()) return;
+      field->abandon.store(true, std::memory_order_relaxed);
+      thread.join();
+    }
+  } join_field{field, field_thread};
   // Solution paths run start ... goal; an any-heading goal's virtual state ends them, and an
   // escape's virtual start begins them (its poses are put back by prependEscape).
   auto lattice_path = [&](Solution& sol) {
@@ -566,6 +614,11 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     ls.poses = impl_->posesOf(problem, ls.search);
     if (escape) impl_->prependEscape(*escape, s, problem.state(ls.search.path.front()), ls);
     ls.elapsed_total_s = sol.elapsed_s + offset;
+    // The displacement grid may stop where keys reach this cost (DisplacementGrid::compute).
+    if (field && sol.cost >= 0) {
+      field->bound.store(std::min(field->bound.load(), static_cast<std::uint64_t>(sol.cost)));
+      launch_field();
+    }
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
   };

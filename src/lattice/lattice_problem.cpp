@@ -204,13 +204,28 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue*
     if (v == kUnreachable) return kInfiniteHeuristic;  // the abstraction proves it unreachable
     c = v;
   }
+  // The displacement grid, once complete (upgradeHeuristics): heading-blind, in cost units.
+  double d = 0.0;
+  if (disp_ != nullptr) {
+    const std::uint32_t v = disp_->at(x, y);
+    if (v == DisplacementGrid::kUnreachable) return kInfiniteHeuristic;  // no move reaches it
+    d = v;
+  }
   // The heading-blind part: consistent, as a maximum of consistent terms, and <= the anchor.
   if (base != nullptr)
     *base = static_cast<HeuristicValue>(
-        std::min(std::max(std::floor(euclid), std::floor(g / kGridFraction)), 4e9));
+        std::min(std::max({std::floor(euclid), std::floor(g / kGridFraction), d}), 4e9));
   if (kinematic_.valid())
     c = std::max<double>(c, kinematic_.value(x - goal_x_, y - goal_y_, heading));
-  return static_cast<HeuristicValue>(std::min(std::max({a, b, c}), 4e9));
+  return static_cast<HeuristicValue>(std::min(std::max({a, b, c, d}), 4e9));
+}
+
+bool LatticeProblem::upgradeHeuristics() {
+  if (disp_ != nullptr || !displacement_ || grids_[0] == nullptr ||
+      !displacement_->ready.load(std::memory_order_acquire))
+    return false;
+  disp_ = displacement_.get();
+  return true;
 }
 
 void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {

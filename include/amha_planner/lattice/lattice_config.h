@@ -124,6 +124,14 @@ struct LatticeConfig {
     /// expansions, and where turns are expensive (SBPL's cubicle: 20 s per 45 degrees) the
     /// block abstraction already knows their cost (docs/results/lattice.md, 1b).
     bool anchor_turn_term = false;
+    /// With grid_anchor: also take the displacement grid (displacement_grid.h), a 2-D
+    /// cost-to-go whose moves are the primitives' own displacements, exact in scale where the
+    /// 16-connected grid must be scaled down. A helper thread computes it from the first path on
+    /// (none on a single core), and the search takes it up once complete: it speeds up long
+    /// proofs (1.2-1.3 times on Willow Garage at 2.5 cm) and slows short ones, which end before
+    /// it is complete, by 6-9 % (the two threads share the cache). Off by default for that
+    /// (docs/results/smac.md, "The displacement grid"). Admissible and consistent.
+    bool displacement_grid = false;
     /// Whether a weight w (ARA*'s epsilon, A-MHA*'s w1) inflates the heuristics' heading-aware
     /// terms too: the block abstraction, the kinematic table and the turning terms. Off (the
     /// default): the keys are g + h + (w - 1) b, with b the heading-blind part of h (the larger

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "amha_planner/lattice/detail/displacement_grid.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/detail/state_keys.h"
 #include "amha_planner/lattice/lattice_graph.h"
@@ -93,6 +94,17 @@ class LatticeProblem final : public SearchProblem {
   /// given, receives its heading-blind part (hasInflationBases).
   HeuristicValue anchor(int x, int y, int heading, HeuristicValue* base = nullptr) const;
 
+  /// A displacement grid for this problem's goal (backward: from its start) that a helper
+  /// thread is computing (displacement_grid.h). Until it is complete the anchor leaves it out;
+  /// then upgradeHeuristics() takes it into the anchor and its heading-blind part (the larger of
+  /// consistent, admissible terms: both stay so, and no value falls).
+  void setDisplacementField(std::shared_ptr<const DisplacementField> field) {
+    displacement_ = std::move(field);
+  }
+  bool upgradeHeuristics() override;
+  /// Whether the anchor holds the displacement grid.
+  bool usesDisplacementGrid() const { return disp_ != nullptr; }
+
  private:
   const LatticeGraph& graph_;
   std::shared_ptr<const GoalHeuristics> heur_;
@@ -107,6 +119,8 @@ class LatticeProblem final : public SearchProblem {
   }
   const std::uint32_t* coarse_ = nullptr;
   KinematicLookup kinematic_;
+  std::shared_ptr<const DisplacementField> displacement_;
+  const DisplacementField* disp_ = nullptr;        // displacement_, once taken up
   bool bases_ = false;                             // hasInflationBases()
   HeuristicValue last_bases_[kNumGridKinds] = {};  // the bases of the state heuristics() saw last
   bool kinematic_inadmissible_ = false;            // the inadmissible heuristics take the table too
