@@ -11,14 +11,15 @@
 // it needs no scale below 1: that grid must be scaled (LatticeGraph::computeAnchorScales)
 // because an arc can be cheaper than every walk of the grid's moves, which shortens every
 // distance by 1-2 %; here each arc is a move. Over the states the proof expands the grid is a
-// median 0.3-1 % below the best heading's exact cost-to-go where the 16-connected one is
-// 1.5-2 % below, and A* on the anchor with it expands 1.1-16 times fewer states on the Smac
-// benchmark's queries (docs/results/smac.md).
+// median 0.1-1.1 % below the best heading's exact cost-to-go where the 16-connected one is
+// 1.3-2.2 % below, and A* on the anchor with it, complete, expands 1.1-16 times fewer states
+// on the Smac benchmark's queries (docs/results/smac.md, "The displacement grid").
 //
 // It costs 4-6 times that grid (48-52 moves up to 18 cells long, against 16 of one or two), so
-// the search does not wait for it: LatticePlanner computes it on a helper thread while the
-// search runs, and the search takes it up when it is complete (SearchProblem::
-// upgradeHeuristics). The per-map part (moves, levels, clearance) is built with the planner.
+// the search does not wait for it: LatticePlanner computes it on a helper thread beside the
+// search (from its first path, for the anytime searches), and the search takes it up when it
+// is complete (SearchProblem::upgradeHeuristics). The per-map part (moves, levels, clearance)
+// is built with the planner, and only when LatticeConfig::Heuristics::displacement_grid asks.
 #pragma once
 
 #include <atomic>
