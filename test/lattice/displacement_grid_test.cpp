@@ -132,11 +132,8 @@ TEST(DisplacementGridTest, ConsistentAndAdmissibleOnGeneratedLattices) {
 
 TEST(DisplacementGridTest, ConsistentOnTheCubicle) {
   AMHA_REQUIRE_SHARED_DATA(data);
-  SbplEnvironment env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
-  LatticeConfig c;
-  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
-  c.robot.footprint = test::rectangle(0.01, 0.01);
-  useSbplCostModel(env, c);
+  SbplEnvironment env;
+  LatticeConfig c = test::cubicleConfig(data, &env);
   LatticeGraph g(std::make_shared<GridMap>(env.map), c);
   DisplacementGrid d(g);
   EXPECT_TRUE(consistentOnEveryEdge(g, valueOf(*field(d, 240, 80, true, 160, 320)), true));

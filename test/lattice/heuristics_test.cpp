@@ -276,11 +276,8 @@ TEST(AnchorTest, ConsistentOnRandomEdgesOfGeneratedLattices) {
 
 TEST(AnchorTest, ConsistentOnRandomEdgesOfTheCubicle) {
   AMHA_REQUIRE_SHARED_DATA(data);
-  SbplEnvironment env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
-  LatticeConfig c;
-  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
-  c.robot.footprint = test::rectangle(0.01, 0.01);
-  useSbplCostModel(env, c);
+  SbplEnvironment env;
+  LatticeConfig c = test::cubicleConfig(data, &env);
   for (bool turn_term : {false, true}) {
     c.heuristics.anchor_turn_term = turn_term;
     LatticeFixture f = makeFixture(std::make_shared<GridMap>(env.map), c);

@@ -319,12 +319,9 @@ TEST(LatticePlannerTest, PosesCacheAndConcurrentQueries) {
 
 TEST(LatticePlannerTest, CubicleWithPr2PrimitivesValidates) {
   AMHA_REQUIRE_SHARED_DATA(data);
-  SbplEnvironment env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
+  SbplEnvironment env;
+  const LatticeConfig c = test::cubicleConfig(data, &env);
   auto map = std::make_shared<GridMap>(env.map);
-  LatticeConfig c;
-  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
-  c.robot.footprint = test::rectangle(0.01, 0.01);
-  useSbplCostModel(env, c);
   LatticeGraph g(map, c);
   HeuristicGridBuilder b(g);
   LatticeState s, t;

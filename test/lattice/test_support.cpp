@@ -76,6 +76,15 @@ std::vector<Cost> dijkstraFrom(const LatticeGraph& g, const LatticeState& s,
   return d;
 }
 
+LatticeConfig cubicleConfig(const std::string& data, SbplEnvironment* env) {
+  *env = loadSbplEnvironment(data + "/sbpl/cubicle-25mm-inflated-env.cfg");
+  LatticeConfig c;
+  c.motion.mprim_file = data + "/sbpl/pr2.mprim";
+  c.robot.footprint = rectangle(0.01, 0.01);
+  useSbplCostModel(*env, c);
+  return c;
+}
+
 LatticeConfig smallRobot(unsigned seed) {
   LatticeConfig c;
   c.motion.turning_radius = 0.2;

@@ -9,6 +9,7 @@
 #include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_graph.h"
 #include "amha_planner/lattice/lattice_planner.h"
+#include "amha_planner/lattice/map_loaders.h"
 
 namespace amha {
 namespace lattice {
@@ -35,6 +36,9 @@ LatticeConfig smallRobot(unsigned seed);
 /// The start cell's 8-connected component of cells below kInscribedCost (1 = in it), by a
 /// plain flood fill; all 0 if the start cell itself is not below it.
 std::vector<char> floodFill(const GridMap& m, int sx, int sy);
+/// SBPL's inflated cubicle at 25 mm (*env receives it) with the PR2's primitives, a footprint of
+/// a few millimetres (the map is inflated already) and SBPL's cost model.
+LatticeConfig cubicleConfig(const std::string& data, SbplEnvironment* env);
 /// A small rectangular footprint (half length, half width in metres).
 std::vector<std::array<double, 2>> rectangle(double half_length, double half_width);
 

@@ -45,20 +45,7 @@ TEST(InflationBases, EveryAlgorithmKeepsItsBounds) {
         const SearchResult r = makePlanner(c)->search(g, SearchLimits());
         SCOPED_TRACE(std::string(algorithmName(a)) + " graph " + std::to_string(k) + " bases " +
                      std::to_string(num) + "/3");
-        if (optimal >= kInfiniteCost) {
-          EXPECT_EQ(r.status, SearchStatus::kNoSolution);
-          continue;
-        }
-        ASSERT_FALSE(r.solutions.empty());
-        for (const Solution& s : r.solutions) {
-          EXPECT_EQ(testing::validateSolution(g, s, optimal), "");
-          EXPECT_LE(static_cast<double>(s.cost),
-                    s.nominal_bound * static_cast<double>(optimal) + 1e-9);
-        }
-        if (a != Algorithm::kWeightedAStar && a != Algorithm::kMhaStar) {
-          EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
-          EXPECT_EQ(r.best().cost, optimal);
-        }
+        testing::expectValidResult(g, r, a, optimal);
       }
       ++k;
     }
