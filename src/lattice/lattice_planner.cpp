@@ -8,6 +8,7 @@
 #include <future>
 #include <list>
 #include <mutex>
+#include <new>
 #include <stdexcept>
 #include <thread>
 
@@ -562,7 +563,12 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
   std::thread field_thread;
   const Algorithm algo = algorithm.algorithm;
   const bool anytime = algo == Algorithm::kAmhaStar || algo == Algorithm::kAraStar;
-  if (impl_->displacement && grids->grids[0] != nullptr && (anytime || algo == Algorithm::kAStar)) {
+  // Its distances take 4 bytes a padded cell beside the grids, within the same memory cap.
+  const bool room_for_field =
+      impl_->displacement &&
+      (grid_count * padded + impl_->displacement->cellCount()) * sizeof(std::uint32_t) <=
+          limits.max_memory_bytes;
+  if (room_for_field && grids->grids[0] != nullptr && (anytime || algo == Algorithm::kAStar)) {
     field = std::make_shared<DisplacementField>();
     problem.setDisplacementField(field);
   }
@@ -571,9 +577,13 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     field_thread = std::thread([field = field, grid, to, from, backward, stop] {
       // Below the search in priority: where the grids' helper still runs, it would slow both.
       setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
-      if (grid->compute(to.x, to.y, !backward, from.x, from.y, &field->bound, field.get(),
-                        &field->abandon, &stop))
-        field->ready.store(true, std::memory_order_release);
+      try {
+        if (grid->compute(to.x, to.y, !backward, from.x, from.y, &field->bound, field.get(),
+                          &field->abandon, &stop))
+          field->ready.store(true, std::memory_order_release);
+      } catch (const std::bad_alloc&) {
+        // No memory for it: the search goes on with the anchor it has.
+      }
     });
   };
   if (algo == Algorithm::kAStar) launch_field();
