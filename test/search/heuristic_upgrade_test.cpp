@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "result_checks.h"
 #include "test_graphs.h"
 
 namespace amha {

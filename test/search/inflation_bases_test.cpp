@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "result_checks.h"
 #include "test_graphs.h"
 
 namespace amha {

@@ -1,7 +1,5 @@
 #include "test_graphs.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -214,22 +212,6 @@ void EndlessGrid::successors(StateId s, std::vector<Edge>& out) {
 
 void EndlessGrid::heuristics(StateId s, HeuristicValue* out, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) out[i] = (s == 1) ? 0 : static_cast<HeuristicValue>(i);
-}
-
-void expectValidResult(ExplicitGraph& g, const SearchResult& r, Algorithm a, Cost optimal) {
-  if (optimal >= kInfiniteCost) {
-    EXPECT_EQ(r.status, SearchStatus::kNoSolution);
-    return;
-  }
-  ASSERT_FALSE(r.solutions.empty());
-  for (const Solution& s : r.solutions) {
-    EXPECT_EQ(validateSolution(g, s, optimal), "");
-    EXPECT_LE(static_cast<double>(s.cost), s.nominal_bound * static_cast<double>(optimal) + 1e-9);
-  }
-  if (a != Algorithm::kWeightedAStar && a != Algorithm::kMhaStar) {
-    EXPECT_EQ(r.status, SearchStatus::kProvenOptimal);
-    EXPECT_EQ(r.best().cost, optimal);
-  }
 }
 
 }  // namespace testing

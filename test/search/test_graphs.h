@@ -78,11 +78,6 @@ std::vector<ExplicitGraph> gridsAndGraphs(int width, int height, int n, double o
 /// Returns "" when valid, else a description of the problem.
 std::string validateSolution(ExplicitGraph& g, const Solution& s, Cost optimal);
 
-/// Checks algorithm a's result on g (gtest expectations): no solution exactly when none exists,
-/// every solution valid (validateSolution) and within its nominal bound, and the algorithms that
-/// prove (all but weighted A* and MHA*) proven optimal.
-void expectValidResult(ExplicitGraph& g, const SearchResult& r, Algorithm a, Cost optimal);
-
 /// A problem on an unbounded 4-connected grid whose ids are assigned on discovery; the goal is
 /// walled off, so a search explores until a limit stops it.
 class EndlessGrid : public SearchProblem {
