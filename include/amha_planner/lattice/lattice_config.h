@@ -128,8 +128,8 @@ struct LatticeConfig {
     /// cost-to-go whose moves are the primitives' own displacements, exact in scale where the
     /// 16-connected grid must be scaled down. A helper thread computes it from the first path on
     /// (none on a single core), and the search takes it up once complete: it speeds up long
-    /// proofs (1.2-1.3 times on Willow Garage at 2.5 cm) and slows short ones, which end before
-    /// it is complete, by 6-9 % (the two threads share the cache). Off by default for that
+    /// proofs (the median one 1.26 times on Willow Garage at 2.5 cm) and slows short ones, which
+    /// end before it is complete (the median one 3-6 % at 5 cm). Off by default for that
     /// (docs/results/smac.md, "The displacement grid"). Admissible and consistent.
     bool displacement_grid = false;
     /// Whether a weight w (ARA*'s epsilon, A-MHA*'s w1) inflates the heuristics' heading-aware
