@@ -46,9 +46,10 @@ DisplacementGrid::DisplacementGrid(const LatticeGraph& graph)
     m.dy = d.second;
     m.base_cost = v.first;
     m.cells.assign(v.second.begin(), v.second.end());
-    int r = std::max(std::abs(m.dx), std::abs(m.dy));
-    for (const auto& c : m.cells) r = std::max({r, std::abs(c.first), std::abs(c.second)});
-    reach_max = std::max(reach_max, r);
+    m.reach = std::max(std::abs(m.dx), std::abs(m.dy));
+    for (const auto& c : m.cells)
+      m.reach = std::max({m.reach, std::abs(c.first), std::abs(c.second)});
+    reach_max = std::max(reach_max, m.reach);
     moves_.push_back(std::move(m));
   }
   // In memory order (rows, then columns): a cell's relaxations then walk its neighbourhood
@@ -59,19 +60,21 @@ DisplacementGrid::DisplacementGrid(const LatticeGraph& graph)
   padded_width_ = width_ + 2 * pad_;
   const std::size_t padded_height = static_cast<std::size_t>(height_ + 2 * pad_);
   needed_begin_.push_back(0);
+  // kappa: at most every move's cheapest cost per cell of its length. Then for a move from a to
+  // b, e(a) - e(b) < kappa |a - b| + 1 <= step + 1 (the floors), an integer, so at most the
+  // step: the guide is consistent. (0.01 below, for the rounding of the square roots.)
+  kappa_ = std::numeric_limits<double>::infinity();
   for (const Move& m : moves_) {
     offsets_.push_back(static_cast<std::int64_t>(m.dy) * padded_width_ + m.dx);
-    int r = std::max(std::abs(m.dx), std::abs(m.dy));
     bool start = false, end = false;
     for (const auto& [cx, cy] : m.cells) {
-      r = std::max({r, std::abs(cx), std::abs(cy)});
       start = start || (cx == 0 && cy == 0);
       end = end || (cx == m.dx && cy == m.dy);
       if ((cx == 0 && cy == 0) || (cx == m.dx && cy == m.dy)) continue;
       needed_.push_back(static_cast<std::int64_t>(cy) * padded_width_ + cx);
     }
     needed_begin_.push_back(static_cast<std::uint32_t>(needed_.size()));
-    reach_.push_back(static_cast<std::uint8_t>(std::min(r, 254)));
+    reach_.push_back(static_cast<std::uint8_t>(std::min(m.reach, 254)));
     // The penalty is the worst centre cell's: the two ends are centre cells of every action
     // (a primitive starts and ends at its cells' centres), so their worse level is at most that.
     // Were one not (a malformed set), the base cost alone is still a lower bound.
@@ -83,7 +86,10 @@ DisplacementGrid::DisplacementGrid(const LatticeGraph& graph)
       step_.push_back(static_cast<std::uint32_t>(std::min<std::uint64_t>(cost, kUnreachable - 1)));
       if (l <= kInscribedCost) max_step_ = std::max(max_step_, step_.back());
     }
+    const double cheapest = step_[step_.size() - 256 + 1];
+    kappa_ = std::min(kappa_, (cheapest - 0.01) / std::hypot(m.dx, m.dy));
   }
+  kappa_ = std::isfinite(kappa_) ? std::max(0.0, kappa_) : 0.0;
   // Levels: 1 + the cost of each cell the centre may cross (below inscribed), 0 elsewhere and
   // on the padding, as LatticeGraph::edgeCost tests an action's centre cells. Zero is "blocked"
   // so that blocked areas (the unknown around a building) stay untouched zero pages.
@@ -132,11 +138,6 @@ DisplacementGrid::DisplacementGrid(const LatticeGraph& graph)
   }
 }
 
-std::size_t DisplacementGrid::bytes() const {
-  return level_.size() + clear_.size() + step_.capacity() * sizeof(std::uint32_t) +
-         needed_.capacity() * sizeof(std::int64_t) + offsets_.capacity() * sizeof(std::int64_t);
-}
-
 bool DisplacementGrid::compute(int x, int y, bool to_cell, int toward_x, int toward_y,
                                const std::atomic<std::uint64_t>* bound, DisplacementField* out,
                                const std::atomic<bool>* abandon, const StopCondition* stop) const {
@@ -147,36 +148,27 @@ bool DisplacementGrid::compute(int x, int y, bool to_cell, int toward_x, int tow
   out->toward_x = toward_x;
   out->toward_y = toward_y;
   out->stop_key = UINT64_MAX;
-  // kappa: at most every move's cheapest cost per cell of its length. Then for a move from a to
-  // b, e(a) - e(b) < kappa |a - b| + 1 <= step + 1 (the floors), an integer, so at most the
-  // step: e is consistent. (0.01 below, for the rounding of the square roots.)
-  double kappa = std::numeric_limits<double>::infinity();
-  for (std::size_t m = 0; m < moves_.size(); ++m) {
-    const double len = std::hypot(moves_[m].dx, moves_[m].dy);
-    kappa = std::min(kappa, (static_cast<double>(step_[m * 256 + 1]) - 0.01) / len);
-  }
-  out->kappa = std::isfinite(kappa) ? std::max(0.0, kappa) : 0.0;
+  out->kappa = kappa_;
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return true;
   const auto origin = static_cast<std::uint32_t>(index(x, y));
   if (level_[origin] == 0) return true;  // the centre cannot be there: nothing reaches it
   dist[origin] = 1;
   const std::int64_t tx = toward_x + pad_, ty = toward_y + pad_;
-  const double ox = x - toward_x, oy = y - toward_y;
-  const auto first = static_cast<std::uint32_t>(out->kappa * std::sqrt(ox * ox + oy * oy));
-  // A key is at most a step and the change of e along it (below a step) above the last popped.
+  const auto first =
+      static_cast<std::uint32_t>(displacementGuide(kappa_, x - toward_x, y - toward_y));
+  auto search = [&](auto& queue) {
+    queue.push(first, origin);
+    return to_cell ? run<true>(dist.data(), queue, tx, ty, bound, &out->stop_key, abandon, stop)
+                   : run<false>(dist.data(), queue, tx, ty, bound, &out->stop_key, abandon, stop);
+  };
+  // A key is at most a step and the change of the guide along it (below a step) above the last
+  // popped.
   if (2.0 * max_step_ + first < 4e9 && max_step_ < (1u << 15)) {
     detail::DialQueue q(2 * max_step_, first);
-    q.push(first, origin);
-    return to_cell
-               ? run<true>(dist.data(), q, tx, ty, out->kappa, bound, &out->stop_key, abandon, stop)
-               : run<false>(dist.data(), q, tx, ty, out->kappa, bound, &out->stop_key, abandon,
-                            stop);
+    return search(q);
   }
   detail::RadixHeap q;
-  q.push(first, origin);
-  return to_cell
-             ? run<true>(dist.data(), q, tx, ty, out->kappa, bound, &out->stop_key, abandon, stop)
-             : run<false>(dist.data(), q, tx, ty, out->kappa, bound, &out->stop_key, abandon, stop);
+  return search(q);
 }
 
 // A* from the origin toward (tx, ty) (padded). Toward the origin (kToCell), a settled cell i
@@ -186,18 +178,16 @@ bool DisplacementGrid::compute(int x, int y, bool to_cell, int toward_x, int tow
 // kUnreachable - 1: still a lower bound, and the minimum of two consistent functions.
 template <bool kToCell, class Queue>
 bool DisplacementGrid::run(std::uint32_t* dist, Queue& queue, std::int64_t tx, std::int64_t ty,
-                           double kappa, const std::atomic<std::uint64_t>* bound,
-                           std::uint64_t* stop_key, const std::atomic<bool>* abandon,
-                           const StopCondition* stop) const {
+                           const std::atomic<std::uint64_t>* bound, std::uint64_t* stop_key,
+                           const std::atomic<bool>* abandon, const StopCondition* stop) const {
   const std::size_t nm = offsets_.size();
   const std::uint8_t* level = level_.data();
   const std::uint8_t* clear = clear_.data();
   const std::int64_t* needed = needed_.data();
   const std::int64_t pw = padded_width_;
-  // Exactly DisplacementField::at's e, from the padded cell's offset to (tx, ty).
-  auto e = [kappa](std::int64_t dx, std::int64_t dy) {
-    const double fx = static_cast<double>(dx), fy = static_cast<double>(dy);
-    return static_cast<std::uint64_t>(kappa * std::sqrt(fx * fx + fy * fy));
+  // The guide, from a cell's offset to (tx, ty): exactly DisplacementField::at's.
+  auto e = [this](std::int64_t dx, std::int64_t dy) {
+    return displacementGuide(kappa_, static_cast<double>(dx), static_cast<double>(dy));
   };
   const std::uint32_t upw = static_cast<std::uint32_t>(pw);  // a 32-bit division is faster
   for (std::uint32_t pops = 0; !queue.empty();) {

@@ -82,7 +82,6 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   resetQueues();
   iteration_ = 0;
   stall_rung_ = 0;
-  stale_keys_ = false;
   stale_states_ = false;
   dts_ = opt_.schedule == QueueSchedule::kDts && nh() > 1;
   next_queue_ = 1;
@@ -259,10 +258,8 @@ bool MhaEngine::improvePath() {
       }
     }
     if (limitHit()) return false;
-    if (n_inad == 0 && w1_ <= 1.0 && (expansions_ & 1023) == 0 && problem_->upgradeHeuristics()) {
+    if (n_inad == 0 && w1_ <= 1.0 && (expansions_ & 1023) == 0 && problem_->upgradeHeuristics())
       markHeuristicsStale();
-      stale_keys_ = true;
-    }
     // No path yet after the stall budget: on to an iteration with a larger w1, from OPEN_0 u
     // INCONS as line 38 would: stall_mid_w1 for stall_mid_expansions more (if set), then
     // stall_w1, each once.
@@ -292,7 +289,7 @@ bool MhaEngine::improvePath() {
     }
     const StateId s = open_[q].topId();
     open_[q].pop();
-    if (stale_keys_ && requeuedWithNewKey(s)) continue;
+    if (stale_states_ && requeuedWithNewKey(s)) continue;
     // Choose the next step's inadmissible queue now: the next round tests the tops of OPEN_0
     // and of that queue against their records, so start loading those while s is expanded (if
     // expand() changes a top, the hint is merely wasted). DTS thus draws before s's reward is
@@ -364,8 +361,7 @@ bool MhaEngine::prepareNextIteration(double next_w1, double next_w2) {
   // Better heuristics now: the iteration starts from OPEN_0 u INCONS as ever (its bound needs
   // only h_0 consistent from here on), keyed with them; a state they prove cut off leaves.
   if (problem_->upgradeHeuristics()) markHeuristicsStale();
-  stale_keys_ = false;  // every member is re-keyed below
-  if (stale_states_) {
+  if (stale_states_) {  // renewed here, the members are never stale when popped
     std::size_t kept = 0;
     for (std::size_t k = 0; k < members_.size(); ++k) {
       const StateId s = members_[k];

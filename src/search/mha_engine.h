@@ -72,12 +72,14 @@ class MhaEngine : public SearchBase {
   // SearchProblem::upgradeHeuristics: marks every generated state's cached heuristics stale
   // (kStaleH), for generate() to recompute when the state is next generated or popped.
   void markHeuristicsStale();
-  // Whether s, just popped from OPEN_0 in an A* iteration with stale heuristics, goes back with
-  // its new key instead of being expanded (the new key is larger).
+  // Whether s, just popped, goes back into OPEN_0 with its renewed key instead of being
+  // expanded (it was stale and its key rose).
   bool requeuedWithNewKey(StateId s);
-  bool stale_keys_ = false;    // OPEN_0 may hold keys computed with stale heuristics
-  bool stale_states_ = false;  // some state may hold stale heuristics (kStaleH)
-  void clearClosed();          // also empties INCONS
+  // Some state may hold stale heuristics (kStaleH). A stale state in OPEN_0 (a key computed
+  // with them) arises only within an A* iteration: generate() renews a state before any push,
+  // and prepareNextIteration renews every member.
+  bool stale_states_ = false;
+  void clearClosed();  // also empties INCONS
   // Collects OPEN_0 u INCONS (finite h0) into members_, in id order, and returns the minimum
   // of g + h0 over them: a lower bound on the optimal cost.
   Cost collectOpen0AndIncons();

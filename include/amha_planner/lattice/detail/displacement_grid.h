@@ -38,6 +38,13 @@ namespace lattice {
 class LatticeGraph;
 struct DisplacementField;
 
+/// The A*'s guide toward the search's start (DisplacementGrid::compute), for a cell (dx, dy)
+/// from it: floor(kappa |(dx, dy)|). One function, so that the A*'s keys and
+/// DisplacementField::at agree to the unit.
+inline std::uint64_t displacementGuide(double kappa, double dx, double dy) {
+  return static_cast<std::uint64_t>(kappa * std::sqrt(dx * dx + dy * dy));
+}
+
 class DisplacementGrid {
  public:
   /// Unreachable cells hold this.
@@ -64,30 +71,27 @@ class DisplacementGrid {
     return static_cast<std::size_t>(y + pad_) * static_cast<std::size_t>(padded_width_) +
            static_cast<std::size_t>(x + pad_);
   }
-  /// Cells between two rows of a result (the padded width).
-  std::int64_t stride() const { return padded_width_; }
+  /// Padded cells: a result of compute() takes 4 bytes each.
   std::size_t cellCount() const { return level_.size(); }
-  int pad() const { return pad_; }
   std::size_t moveCount() const { return offsets_.size(); }
-  /// The per-map arrays (a result of compute() takes 4 bytes per padded cell more).
-  std::size_t bytes() const;
 
-  /// A move, for tests: displacement, cheapest base cost, and the cells it needs (relative
-  /// to its start cell, both ends included).
+ private:
+  /// A displacement, its cheapest base cost, the cells every action with it crosses (relative to
+  /// its start cell, both ends included), and the farthest of them (Chebyshev).
   struct Move {
     int dx = 0, dy = 0;
     std::int64_t base_cost = 0;
     std::vector<std::pair<int, int>> cells;
+    int reach = 0;
   };
-  const std::vector<Move>& moves() const { return moves_; }
 
- private:
   template <bool kToCell, class Queue>
-  bool run(std::uint32_t* dist, Queue& queue, std::int64_t tx, std::int64_t ty, double kappa,
+  bool run(std::uint32_t* dist, Queue& queue, std::int64_t tx, std::int64_t ty,
            const std::atomic<std::uint64_t>* bound, std::uint64_t* stop_key,
            const std::atomic<bool>* abandon, const StopCondition* stop) const;
 
   int width_ = 0, height_ = 0, pad_ = 0, padded_width_ = 0;
+  double kappa_ = 0.0;  // the guide's cost per cell (compute())
   std::vector<Move> moves_;
   std::vector<std::int64_t> offsets_;        // per move: dy * padded width + dx
   std::vector<std::uint8_t> reach_;          // per move: farthest needed cell (Chebyshev)
@@ -121,8 +125,7 @@ struct DisplacementField {
   std::uint32_t at(int x, int y) const {
     const std::uint32_t v = origin[static_cast<std::int64_t>(y) * stride + x] - 1u;
     if (stop_key == UINT64_MAX) return v;
-    const double dx = x - toward_x, dy = y - toward_y;
-    const auto e = static_cast<std::uint64_t>(kappa * std::sqrt(dx * dx + dy * dy));
+    const std::uint64_t e = displacementGuide(kappa, x - toward_x, y - toward_y);
     const std::uint64_t lb = stop_key > e ? stop_key - e : 0;
     return lb < v ? static_cast<std::uint32_t>(lb) : v;
   }

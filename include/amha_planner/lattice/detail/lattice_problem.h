@@ -102,8 +102,6 @@ class LatticeProblem final : public SearchProblem {
     displacement_ = std::move(field);
   }
   bool upgradeHeuristics() override;
-  /// Whether the anchor holds the displacement grid.
-  bool usesDisplacementGrid() const { return disp_ != nullptr; }
 
  private:
   const LatticeGraph& graph_;
