@@ -92,7 +92,8 @@ DisplacementGrid::DisplacementGrid(const LatticeGraph& graph)
   kappa_ = std::isfinite(kappa_) ? std::max(0.0, kappa_) : 0.0;
   // Levels: 1 + the cost of each cell the centre may cross (below inscribed), 0 elsewhere and
   // on the padding, as LatticeGraph::edgeCost tests an action's centre cells. Zero is "blocked"
-  // so that blocked areas (the unknown around a building) stay untouched zero pages.
+  // so that wholly blocked pages stay untouched: rows being contiguous, only the rows of unknown
+  // above and below a building (3 % of the pages of Willow Garage at 5 and at 2.5 cm).
   level_.reset(static_cast<std::size_t>(padded_width_) * padded_height);
   const std::vector<std::uint8_t>& cost = graph.map().cost;
   for (int y = 0; y < height_; ++y) {

@@ -1,7 +1,8 @@
 // A fixed-size array of zeroed, trivially copyable elements from calloc: a large one is fresh
 // zero pages that cost no memory until written. A map's grid whose zero means "nothing here"
-// (blocked, or not reached) then takes memory only where something is, e.g. inside a building
-// and not in the unknown around it. std::vector would write every element.
+// (blocked, or not reached) then takes no memory for a page where nothing is: rows being
+// contiguous, e.g. the rows of unknown above and below a building, or the cells a search never
+// reached. std::vector would write every element.
 #pragma once
 
 #include <cstddef>
