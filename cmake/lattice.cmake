@@ -105,6 +105,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/footprint_test.cpp
     test/lattice/heuristics_test.cpp
     test/lattice/displacement_grid_test.cpp
+    test/lattice/backward_bound_test.cpp
     test/lattice/planner_test.cpp
     test/lattice/incremental_map_test.cpp
     test/lattice/heuristic_repair_test.cpp

@@ -70,6 +70,11 @@ void LatticeOptions::addTo(CLI::App& app) {
                "add to the anchor the displacement grid (a 2-D cost-to-go over the primitives' "
                "own moves, computed alongside the search from its first path): faster long "
                "proofs, slower short ones");
+  app.add_option("--bidirectional-after", bidirectional_after,
+                 "seconds into a search after which a backward search from the goal, on a "
+                 "second core, raises its anchor as it goes (a bidirectional proof): much "
+                 "sooner proofs where paths turn in little room (default: off)")
+      ->check(CLI::Range(0.0, 3600.0));
   auto* with_turn = app.add_flag(
       "--turn-term", turn_term,
       "add to the anchor a turning term (cost of turning to the goal's heading); off by default: "
@@ -230,6 +235,7 @@ LoadedLattice loadLattice(const LatticeOptions& o) {
       o.turn_term;  // --no-turn-term is the default (the two exclude each other)
   c.heuristics.inflate_heading_terms = o.inflate_heading_terms;
   c.heuristics.displacement_grid = o.displacement_grid;
+  c.heuristics.bidirectional_after_s = o.bidirectional_after;
   c.backward_search = o.backward;
   return out;
 }

@@ -42,6 +42,7 @@ struct LatticeOptions {
   bool backward = false;
   bool inflate_heading_terms = false;
   bool displacement_grid = false;
+  double bidirectional_after = -1.0;  // --bidirectional-after; negative: off
   bool turn_term = false;      // --no-turn-term, kept for old scripts, only restates the default
   PrimitiveOptions primitive;  // --primitive-generator, --motion-model, --reverse-penalty
 

@@ -16,6 +16,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include "amha_planner/lattice/detail/backward_bound.h"
 #include "amha_planner/lattice/detail/displacement_grid.h"
 #include "amha_planner/lattice/detail/goal_tolerance.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
@@ -587,6 +588,81 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     });
   };
   if (algo == Algorithm::kAStar) launch_field();
+  // The backward side of a bidirectional proof (backward_bound.h), from bidirectional_after_s
+  // into the search on: a helper thread waits until then, builds the grids from the start (and
+  // takes the start's kinematic table), and runs A* from the goal, which raises this search's
+  // anchor as it goes. A forward search to one state only, on two cores or more.
+  const double after_s = g.config().heuristics.bidirectional_after_s;
+  const std::size_t states =
+      static_cast<std::size_t>(g.width()) * g.height() * static_cast<std::size_t>(g.numHeadings());
+  std::shared_ptr<BackwardBound> bidir;
+  if (after_s >= 0.0 && !backward && !any_heading && !escape &&
+      (anytime || algo == Algorithm::kAStar) && std::thread::hardware_concurrency() >= 2 &&
+      (grid_count + 1) * padded * sizeof(std::uint32_t) + states * sizeof(std::uint32_t) <=
+          limits.max_memory_bytes) {
+    bidir = std::make_shared<BackwardBound>();
+    problem.setBackwardBound(bidir);
+  }
+  std::thread bidir_thread;
+  if (bidir) {
+    const auto begin = std::chrono::steady_clock::now();
+    SearchLimits backward_limits;
+    backward_limits.cancel = &bidir->stop;
+    backward_limits.max_memory_bytes = limits.max_memory_bytes / 2;  // beside this search's
+    bidir_thread = std::thread([this, bb = bidir, s, t, stop, begin, after_s, backward_limits] {
+      setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+      const LatticeGraph& graph = *impl_->graph;
+      auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      };
+      while (elapsed() < after_s) {
+        if (bb->stop.load(std::memory_order_relaxed) || stop.requested()) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+      try {
+        double seconds = 0.0;
+        HeuristicSource source;
+        auto grids = impl_->heuristicsFor(s.x, s.y, s.heading, false, true, stop, &seconds, &source,
+                                          {t.x, t.y});
+        if (!grids) return;
+        // Complete before either search reads them: a cell read before it is final waits.
+        for (const auto& grid : grids->grids) {
+          while (grid && !grid->complete()) {
+            if (grid->progress->abandoned.load() || bb->stop.load(std::memory_order_relaxed))
+              return;
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+          }
+        }
+        KinematicLookup kinematic;
+        if (graph.kinematicTables()) {
+          kinematic = graph.kinematicTables()->lookup(KinematicTables::Direction::kFromStart,
+                                                      s.heading, &stop);
+          if (!kinematic.valid()) return;
+        }
+        bb->width = graph.width();
+        bb->headings = graph.numHeadings();
+        bb->closed.reset(static_cast<std::size_t>(graph.width()) * graph.height() *
+                         static_cast<std::size_t>(graph.numHeadings()));
+        bb->start_anchor.reset(new LatticeProblem(graph, grids, t, s, 0, true, false, kinematic));
+        LatticeProblem search(graph, grids, t, s, 0, true, false, kinematic);
+        search.setBackwardSink(bb.get());
+        bb->ready.store(true, std::memory_order_release);
+        makePlanner(defaultPlannerConfig(Algorithm::kAStar))
+            ->search(search, backward_limits, [](const Solution&) {});
+      } catch (const std::exception&) {
+        // No memory or a table refused: the forward search goes on with its own anchor.
+      }
+    });
+  }
+  struct JoinBidir {
+    std::shared_ptr<BackwardBound>& bound;
+    std::thread& thread;
+    ~JoinBidir() {
+      if (!thread.joinable()) return;
+      bound->stop.store(true, std::memory_order_relaxed);
+      thread.join();
+    }
+  } join_bidir{bidir, bidir_thread};
   struct JoinField {
     std::shared_ptr<DisplacementField>& field;
     std::thread& thread;
@@ -629,6 +705,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
       field->bound.store(std::min(field->bound.load(), static_cast<std::uint64_t>(sol.cost)));
       launch_field();
     }
+    if (bidir && sol.cost >= 0)
+      bidir->bound.store(std::min(bidir->bound.load(), static_cast<std::uint64_t>(sol.cost)));
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
   };
@@ -663,6 +741,14 @@ bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& g
     return true;  // plan() will refuse it
   if (goal_options.any_heading && !backward) heading = kAnyHeading;
   const StopCondition stop = stopFor(limits);
+  // A bidirectional proof's backward side measures from the start with the start's table.
+  if (!backward && !goal_options.any_heading &&
+      g.config().heuristics.bidirectional_after_s >= 0.0) {
+    int sx = 0, sy = 0, sh = 0;
+    if (g.poseToState(start, &sx, &sy, &sh) &&
+        !tables->lookup(KinematicTables::Direction::kFromStart, sh, &stop).valid())
+      return false;
+  }
   return tables->lookup(tableDirection(backward), heading, &stop).valid();
 }
 

@@ -1,6 +1,8 @@
 // The lattice search problem: paged dense state index, successors, heuristics.
 #include "amha_planner/lattice/detail/lattice_problem.h"
 
+#include "amha_planner/lattice/detail/backward_bound.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -51,6 +53,9 @@ LatticeProblem::LatticeProblem(const LatticeGraph& graph,
     scale_[kept] = heur_->scale[k];
   }
   num_inadmissible_ = kept;
+  // Grids complete already (a problem built after waiting for them) are read without checks.
+  grids_complete_ = std::all_of(grids_, grids_ + kNumGridKinds,
+                                [](const DistanceGrid* g) { return !g || g->complete(); });
   // Inflation bases only where a heading-aware term is there to be counted once.
   const bool turn_terms =
       graph.config().heuristics.anchor_turn_term && !(any_goal_heading && !backward);
@@ -217,15 +222,53 @@ HeuristicValue LatticeProblem::anchor(int x, int y, int heading, HeuristicValue*
         std::min(std::max({std::floor(euclid), std::floor(g / kGridFraction), d}), 4e9));
   if (kinematic_.valid())
     c = std::max<double>(c, kinematic_.value(x - goal_x_, y - goal_y_, heading));
-  return static_cast<HeuristicValue>(std::min(std::max({a, b, c, d}), 4e9));
+  double rest = std::max({a, b, c, d});
+  // The backward search at snapshot K: min(h*, K - e_b) (backward_bound.h). Where K - e_b is
+  // not above the rest, neither is the minimum: the closed entry is not read.
+  if (backward_key_ != 0 && heading >= 0 && heading < headings_) {
+    const BackwardBound& bb = *backward_bound_;
+    const HeuristicValue eb = bb.start_anchor->anchor(x, y, heading);
+    const double lb = static_cast<double>(backward_key_) - static_cast<double>(eb);
+    if (eb != kInfiniteHeuristic && lb > rest) {
+      const std::uint32_t v =
+          __atomic_load_n(bb.closed.data() + bb.index(x, y, heading), __ATOMIC_RELAXED);
+      rest = v != 0 ? std::max(rest, std::min(lb, v - 1.0)) : lb;
+    }
+  }
+  return static_cast<HeuristicValue>(std::min(rest, 4e9));
 }
 
 bool LatticeProblem::upgradeHeuristics() {
-  if (disp_ != nullptr || !displacement_ || grids_[0] == nullptr ||
-      !displacement_->ready.load(std::memory_order_acquire))
-    return false;
-  disp_ = displacement_.get();
-  return true;
+  bool changed = false;
+  if (disp_ == nullptr && displacement_ && grids_[0] != nullptr &&
+      displacement_->ready.load(std::memory_order_acquire)) {
+    disp_ = displacement_.get();
+    changed = true;
+  }
+  if (backward_bound_ && backward_bound_->ready.load(std::memory_order_acquire)) {
+    // Acquire: the states closed before this key are visible to the anchor's reads.
+    const std::uint64_t k = backward_bound_->key.load(std::memory_order_acquire);
+    if (k > backward_key_ && (backward_key_ == 0 || static_cast<double>(k - backward_key_) >=
+                                                        kBackwardStep * backward_key_)) {
+      backward_key_ = k;
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+void LatticeProblem::expanded(StateId s, Cost g, double key) {
+  if (s == virtual_goal_ || s == virtual_start_) return;
+  const LatticeState st = state(s);
+  BackwardBound& bb = *sink_;
+  // Every state with a smaller key is closed (A*, e_b consistent): publish the key first
+  // (release, after those states' stores), then close this one, whose h* is g.
+  const auto k = static_cast<std::uint64_t>(key);
+  if (k > bb.key.load(std::memory_order_relaxed)) bb.key.store(k, std::memory_order_release);
+  __atomic_store_n(bb.closed.data() + bb.index(st.x, st.y, st.heading),
+                   static_cast<std::uint32_t>(std::min<Cost>(g, 0xFFFFFFFEu) + 1),
+                   __ATOMIC_RELAXED);
+  if (k >= bb.bound.load(std::memory_order_relaxed)) bb.stop.store(true, std::memory_order_relaxed);
 }
 
 void LatticeProblem::heuristics(StateId s, HeuristicValue* h, std::size_t count) {

@@ -215,6 +215,8 @@ std::vector<ParamSpec> makeSpecs() {
       plain("anchor_turn_term", AMHA_FIELD(lattice.heuristics.anchor_turn_term)),
       plain("inflate_heading_terms", AMHA_FIELD(lattice.heuristics.inflate_heading_terms)),
       plain("displacement_grid", AMHA_FIELD(lattice.heuristics.displacement_grid)),
+      plain("bidirectional_after", AMHA_FIELD(lattice.heuristics.bidirectional_after_s), -1.0,
+            3600.0),
       plain("backward_search", AMHA_FIELD(lattice.backward_search)),
       plain("heuristic_cache_size", AMHA_FIELD(lattice.cache.size), 1, 64),
       plain("repair_heuristics", AMHA_FIELD(lattice.cache.repair)),

@@ -77,6 +77,7 @@ SearchResult MhaEngine::run(SearchProblem& problem, const SearchLimits& limits,
   const InterruptScope interrupt_scope(*this);
   w1_ = opt_.w1;
   w2_ = opt_.w2;
+  notify_expanded_ = problem.wantsExpansions();
   small_keys_ = problem.smallIntegerKeys();
   integer_keys_ = problem.integerKeys();
   resetQueues();
@@ -308,6 +309,7 @@ void MhaEngine::expand(StateId s, std::size_t queue) {
   clearAllOpen(s);  // out of every queue: its entries elsewhere are now stale
   ++expansions_;
   if (observer_) observer_(s, queue, iteration_);
+  if (notify_expanded_) problem_->expanded(s, g(s), key(s, kAnchor).f);
   problem_->successors(s, succ_);
   const Cost gs = g(s);
   // Make room for new ids first (may move the records), then prefetch every successor's

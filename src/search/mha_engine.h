@@ -191,6 +191,7 @@ class MhaEngine : public SearchBase {
   ReallocVector<StateId> members_;  // OPEN_0 u INCONS, from collectOpen0AndIncons()
   std::vector<OpenQueue> open_;     // open_[kAnchor] is the anchor queue
   ExpansionObserver observer_;
+  bool notify_expanded_ = false;  // SearchProblem::wantsExpansions()
 };
 
 }  // namespace detail

@@ -66,6 +66,18 @@ class SearchProblem {
   /// it is the new one (docs/search.md, "Heuristics that improve during a search").
   virtual bool upgradeHeuristics() { return false; }
 
+  /// Whether the search should call expanded() for every state it expands (asked once, when
+  /// it begins): a domain that publishes a search's progress to another one (LatticeProblem,
+  /// as the backward side of a bidirectional proof) says yes; one virtual call per expansion.
+  virtual bool wantsExpansions() const { return false; }
+  /// State s expanded with cost-so-far g, its anchor key `key` (g + w1 h_0). In an A* (w1 = 1,
+  /// h_0 consistent) the keys never fall and every state with a smaller key was expanded first.
+  virtual void expanded(StateId s, Cost g, double key) {
+    (void)s;
+    (void)g;
+    (void)key;
+  }
+
   /// Bytes the domain holds for its states (hash tables, state storage); counted against the
   /// search's memory cap together with the search's own arrays.
   virtual std::size_t memoryBytes() const { return 0; }

@@ -18,6 +18,8 @@
 namespace amha {
 namespace lattice {
 
+struct BackwardBound;
+
 struct LatticeState {
   int x = 0, y = 0, heading = 0;
   bool operator==(const LatticeState& o) const {
@@ -103,6 +105,20 @@ class LatticeProblem final : public SearchProblem {
   }
   bool upgradeHeuristics() override;
 
+  /// The backward side of a bidirectional proof (backward_bound.h), which a helper thread
+  /// fills: once it is ready, upgradeHeuristics() takes a snapshot of its key whenever that
+  /// has risen by kBackwardStep of itself, and the anchor then takes max(h_0, h_K).
+  void setBackwardBound(std::shared_ptr<const BackwardBound> bound) {
+    backward_bound_ = std::move(bound);
+  }
+  /// This problem is the backward side itself: its search's expansions fill `bound`.
+  void setBackwardSink(BackwardBound* bound) { sink_ = bound; }
+  bool wantsExpansions() const override { return sink_ != nullptr; }
+  void expanded(StateId s, Cost g, double key) override;
+  /// The rise of the backward key, relative to the last snapshot, that makes a new one: each
+  /// costs the search a renewal of the values it holds (0.2 %: about ten in a proof).
+  static constexpr double kBackwardStep = 0.002;
+
  private:
   const LatticeGraph& graph_;
   std::shared_ptr<const GoalHeuristics> heur_;
@@ -118,7 +134,10 @@ class LatticeProblem final : public SearchProblem {
   const std::uint32_t* coarse_ = nullptr;
   KinematicLookup kinematic_;
   std::shared_ptr<const DisplacementField> displacement_;
-  const DisplacementField* disp_ = nullptr;        // displacement_, once taken up
+  const DisplacementField* disp_ = nullptr;  // displacement_, once taken up
+  std::shared_ptr<const BackwardBound> backward_bound_;
+  std::uint64_t backward_key_ = 0;  // the snapshot K the anchor uses; 0: none yet
+  BackwardBound* sink_ = nullptr;
   bool bases_ = false;                             // hasInflationBases()
   HeuristicValue last_bases_[kNumGridKinds] = {};  // the bases of the state heuristics() saw last
   bool kinematic_inadmissible_ = false;            // the inadmissible heuristics take the table too
