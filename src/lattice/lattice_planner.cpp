@@ -654,24 +654,18 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
       }
     });
   }
-  struct JoinBidir {
-    std::shared_ptr<BackwardBound>& bound;
+  // At scope exit: ask each helper thread to stop, and join it.
+  struct JoinHelper {
+    std::atomic<bool>* stop;  // set when the thread exists
     std::thread& thread;
-    ~JoinBidir() {
+    ~JoinHelper() {
       if (!thread.joinable()) return;
-      bound->stop.store(true, std::memory_order_relaxed);
+      stop->store(true, std::memory_order_relaxed);
       thread.join();
     }
-  } join_bidir{bidir, bidir_thread};
-  struct JoinField {
-    std::shared_ptr<DisplacementField>& field;
-    std::thread& thread;
-    ~JoinField() {
-      if (!thread.joinable()) return;
-      field->abandon.store(true, std::memory_order_relaxed);
-      thread.join();
-    }
-  } join_field{field, field_thread};
+  };
+  const JoinHelper join_bidir{bidir ? &bidir->stop : nullptr, bidir_thread};
+  const JoinHelper join_field{field ? &field->abandon : nullptr, field_thread};
   // Solution paths run start ... goal; an any-heading goal's virtual state ends them, and an
   // escape's virtual start begins them (its poses are put back by prependEscape).
   auto lattice_path = [&](Solution& sol) {
