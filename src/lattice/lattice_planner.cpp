@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <future>
+#include <limits>
 #include <list>
 #include <mutex>
 #include <new>
@@ -609,20 +610,23 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     SearchLimits backward_limits;
     backward_limits.cancel = &bidir->stop;
     backward_limits.max_memory_bytes = limits.max_memory_bytes / 2;  // beside this search's
-    bidir_thread = std::thread([this, bb = bidir, s, t, stop, begin, after_s, backward_limits] {
+    bidir_thread = std::thread([this, bb = bidir, s, t, begin, after_s, backward_limits] {
       setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
       const LatticeGraph& graph = *impl_->graph;
       auto elapsed = [&] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       };
+      // The search's end (whatever ends it) sets bb->stop: the grids and the table stop with it,
+      // so that the search's result never waits for them.
+      const StopCondition halt(&bb->stop, std::numeric_limits<double>::infinity());
       while (elapsed() < after_s) {
-        if (bb->stop.load(std::memory_order_relaxed) || stop.requested()) return;
+        if (halt.requested()) return;
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
       }
       try {
         double seconds = 0.0;
         HeuristicSource source;
-        auto grids = impl_->heuristicsFor(s.x, s.y, s.heading, false, true, stop, &seconds, &source,
+        auto grids = impl_->heuristicsFor(s.x, s.y, s.heading, false, true, halt, &seconds, &source,
                                           {t.x, t.y});
         if (!grids) return;
         // Complete before either search reads them: a cell read before it is final waits.
@@ -636,7 +640,7 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
         KinematicLookup kinematic;
         if (graph.kinematicTables()) {
           kinematic = graph.kinematicTables()->lookup(KinematicTables::Direction::kFromStart,
-                                                      s.heading, &stop);
+                                                      s.heading, &halt);
           if (!kinematic.valid()) return;
         }
         bb->width = graph.width();
