@@ -724,7 +724,12 @@ bool LatticePlanner::prepareKinematicTables(const SearchLimits& limits) const {
   const auto& tables = impl_->graph->kinematicTables();
   if (!tables) return true;
   const StopCondition stop = stopFor(limits);
-  return tables->prepare(tableDirection(impl_->graph->config().backward_search), &stop);
+  const LatticeConfig& c = impl_->graph->config();
+  // A bidirectional proof's backward side measures from the start with the start's tables.
+  if (!c.backward_search && c.heuristics.bidirectional_after_s >= 0.0 &&
+      !tables->prepare(KinematicTables::Direction::kFromStart, &stop))
+    return false;
+  return tables->prepare(tableDirection(c.backward_search), &stop);
 }
 
 bool LatticePlanner::prepareKinematicTables(const Pose2D& start, const Pose2D& goal,
