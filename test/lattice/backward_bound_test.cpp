@@ -14,6 +14,7 @@
 #include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/search/planner.h"
+#include "anchor_checks.h"
 #include "test_support.h"
 
 namespace amha {
@@ -41,32 +42,6 @@ std::shared_ptr<BackwardBound> runBackward(const LatticeGraph& g, const Heuristi
   makePlanner(pc)->search(search, limits, [](const Solution&) {});
   bb->ready.store(true);
   return bb;
-}
-
-// h(p) <= cost(p, q) + h(q) on every valid edge p -> q of the forward search; edges counted.
-::testing::AssertionResult consistent(const LatticeGraph& g, const LatticeProblem& p, int* edges) {
-  *edges = 0;
-  for (int y = 0; y < g.height(); ++y) {
-    for (int x = 0; x < g.width(); ++x) {
-      for (int h = 0; h < g.numHeadings(); ++h) {
-        if (!g.stateValid(x, y, h)) continue;
-        for (const LatticeAction* a = g.actionsBegin(h); a != g.actionsEnd(h); ++a) {
-          const Cost c = g.edgeCost(x, y, *a);
-          if (c == kInvalidEdge) continue;
-          const HeuristicValue hp = p.anchor(x, y, h),
-                               hq = p.anchor(x + a->dx, y + a->dy, a->end_heading);
-          if (hq == kInfiniteHeuristic) continue;
-          ++*edges;
-          if (hp == kInfiniteHeuristic || static_cast<Cost>(hp) > c + static_cast<Cost>(hq)) {
-            return ::testing::AssertionFailure()
-                   << "edge (" << x << "," << y << "," << h << ") cost " << c << ": " << hp << " > "
-                   << c << " + " << hq;
-          }
-        }
-      }
-    }
-  }
-  return ::testing::AssertionSuccess();
 }
 
 struct Case {
@@ -140,7 +115,8 @@ TEST(BackwardBoundTest, SnapshotsAreConsistentAndRaiseTheAnchor) {
       ASSERT_TRUE(p.upgradeHeuristics());
       ASSERT_FALSE(p.upgradeHeuristics()) << "the key has not moved since";
       int edges = 0;
-      EXPECT_TRUE(consistent(*c.g, p, &edges)) << "seed " << seed << " share " << share;
+      EXPECT_TRUE(test::anchorConsistentOnEveryEdge(*c.g, p, false, &edges))
+          << "seed " << seed << " share " << share;
       EXPECT_GT(edges, 10000);
       EXPECT_EQ(p.anchor(c.t.x, c.t.y, c.t.heading), 0u);
       EXPECT_LE(static_cast<Cost>(p.anchor(c.s.x, c.s.y, c.s.heading)), c.optimum);
@@ -171,7 +147,7 @@ TEST(BackwardBoundTest, ASnapshotAboveThePublishedKeyIsCaught) {
   p.setBackwardBound(bb);
   ASSERT_TRUE(p.upgradeHeuristics());
   int edges = 0;
-  EXPECT_FALSE(consistent(*c.g, p, &edges));
+  EXPECT_FALSE(test::anchorConsistentOnEveryEdge(*c.g, p, false, &edges));
 }
 
 // Planning with it from the start of the search (0 s) and without: the same optimal costs.

@@ -17,6 +17,7 @@
 #include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/detail/lattice_problem.h"
 #include "amha_planner/lattice/map_loaders.h"
+#include "anchor_checks.h"
 #include "test_support.h"
 
 namespace amha {
@@ -228,25 +229,7 @@ TEST(DisplacementGridTest, AnchorWithItConsistentAndPlansTheSameCosts) {
       ASSERT_TRUE(p.upgradeHeuristics());
       ASSERT_FALSE(p.upgradeHeuristics()) << "once";
       int edges = 0;
-      for (int y = 0; y < 80; ++y) {
-        for (int x = 0; x < 100; ++x) {
-          for (int h = 0; h < g->numHeadings(); ++h) {
-            if (!g->stateValid(x, y, h)) continue;
-            for (const LatticeAction* a = g->actionsBegin(h); a != g->actionsEnd(h); ++a) {
-              const Cost cost = g->edgeCost(x, y, *a);
-              if (cost == kInvalidEdge) continue;
-              HeuristicValue hp = p.anchor(x, y, h),
-                             hq = p.anchor(x + a->dx, y + a->dy, a->end_heading);
-              if (backward) std::swap(hp, hq);
-              if (hq == kInfiniteHeuristic) continue;
-              ++edges;
-              ASSERT_NE(hp, kInfiniteHeuristic);
-              ASSERT_LE(static_cast<Cost>(hp), cost + static_cast<Cost>(hq))
-                  << x << "," << y << "," << h << " backward " << backward;
-            }
-          }
-        }
-      }
+      EXPECT_TRUE(test::anchorConsistentOnEveryEdge(*g, p, backward, &edges));
       EXPECT_GT(edges, 10000);
     }
     // Planning with and without it: equal optimal costs (A* takes it up when it is ready).
