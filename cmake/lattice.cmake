@@ -23,6 +23,7 @@ add_library(amha_lattice
   src/lattice/lattice_problem.cpp
   src/lattice/lattice_planner.cpp
   src/lattice/goal_tolerance.cpp
+  src/lattice/goal_reachability.cpp
   src/lattice/start_escape.cpp
   src/lattice/dubins_path.cpp
   src/lattice/path_smoother.cpp
@@ -116,6 +117,7 @@ amha_add_gtest(amha_lattice_tests
     test/lattice/kinematic_table_test.cpp
     test/lattice/state_keys_test.cpp
     test/lattice/start_escape_test.cpp
+    test/lattice/goal_reachability_test.cpp
     test/lattice/path_smoother_test.cpp
     test/lattice/ana_star_lattice_test.cpp
   LIBS amha_lattice opencv_core opencv_imgproc opencv_imgcodecs)  # the tests write images themselves

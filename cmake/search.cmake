@@ -22,6 +22,7 @@ amha_add_gtest(amha_search_tests
     test/search/optimality_test.cpp
     test/search/weight_schedule_test.cpp
     test/search/limits_test.cpp
+    test/search/goal_unreachable_test.cpp
     test/search/stop_condition_test.cpp
     test/search/algorithm_specs_test.cpp
     test/search/monotone_cost_test.cpp

@@ -2,6 +2,7 @@
 #include "amha_planner/lattice/detail/lattice_problem.h"
 
 #include "amha_planner/lattice/detail/backward_bound.h"
+#include "amha_planner/lattice/detail/goal_reachability.h"
 
 #include <algorithm>
 #include <cmath>
@@ -165,6 +166,27 @@ void LatticeProblem::successors(StateId s, std::vector<Edge>& out) {
   // cost 0 on edges that lie on no cycle: nothing leaves the virtual goal).
   if (virtual_goal_ != kNoState && st.x == goal_x_ && st.y == goal_y_)
     out.push_back(Edge{virtual_goal_, 0});
+}
+
+bool LatticeProblem::goalUnreachable(std::size_t budget) {
+  if (virtual_start_ != kNoState) return false;  // several starts, joined by escape edges
+  // The search's goal: a lattice state, or (a goal of any heading, forward) every state of the
+  // goal's cell, which the virtual goal is joined to. Searching backward that goal is the
+  // lattice start, and the walk follows the edges forward, toward the lattice goal.
+  std::vector<LatticeState> seeds;
+  if (goal_ == virtual_goal_) {
+    const LatticeState cell = state(virtual_goal_);
+    for (int h = 0; h < headings_; ++h) seeds.push_back(LatticeState{cell.x, cell.y, h});
+  } else {
+    seeds.push_back(state(goal_));
+  }
+  const LatticeState start = state(start_);
+  const bool any_heading = start_ == virtual_goal_;  // backward to a goal of any heading
+  auto is_start = [&](const LatticeState& s) {
+    return s.x == start.x && s.y == start.y && (any_heading || s.heading == start.heading);
+  };
+  return exploreReachable(graph_, seeds, !backward_, is_start, budget, interrupted_) ==
+         Reachability::kEnclosed;
 }
 
 void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost>>& exits) {

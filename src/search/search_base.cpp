@@ -15,6 +15,8 @@ void SearchBase::begin(SearchProblem& problem, const SearchLimits& limits,
   callback_ = cb;
   result_ = SearchResult();
   stop_ = SearchStatus::kNoSolution;
+  goal_unreachable_ = false;
+  next_reach_check_ = 0;
   expansions_ = 0;
   generated_ = 0;
   resetArrays(std::min(used_, capacity_));
@@ -56,6 +58,14 @@ bool SearchBase::slowLimitCheck() {
     return stopWith(SearchStatus::kMemoryLimit);
   }
   return false;
+}
+
+bool SearchBase::reachabilityCheck() {
+  if (expansions_ < next_reach_check_ || !result_.solutions.empty()) return false;
+  const std::uint64_t budget = std::clamp(expansions_ / 4, kFirstReachBudget, kMaxReachBudget);
+  next_reach_check_ = std::max(kReachCheckStart, 4 * expansions_);
+  goal_unreachable_ = problem_->goalUnreachable(static_cast<std::size_t>(budget));
+  return stopped();  // also if the domain's walk was cut short by the limit check (time, cancel)
 }
 
 bool SearchBase::report(double nominal_bound, Cost lower_bound, int iteration, double w1, double w2,

@@ -32,14 +32,22 @@ class SearchBase {
 
   /// Checks time, cancel, expansion, state and memory limits. Cheap checks every call,
   /// the clock and the domain's memory every 64 expansions.
+  /// Also asks the domain, while no path is known, whether the goal is unreachable
+  /// (reachabilityCheck): a proof of that stops the search with kNoSolution.
   bool limitHit() {
-    if (stop_ != SearchStatus::kNoSolution) return true;
+    if (stopped()) return true;
     if (expansions_ >= limits_.max_expansions) return stopWith(SearchStatus::kExpansionLimit);
     if (generated_ > limits_.max_states) return stopWith(SearchStatus::kMemoryLimit);
-    if ((expansions_ & 63u) == 0) return slowLimitCheck();
+    if ((expansions_ & 63u) == 0) return slowLimitCheck() || reachabilityCheck();
     return false;
   }
   bool slowLimitCheck();
+  /// SearchProblem::goalUnreachable at expansions 0, 8192, 4 x 8192, ... (so its work is at most
+  /// a third of the search's), with a budget of a quarter of the expansions so far (at least
+  /// kFirstReachBudget, at most kMaxReachBudget states); never once a path has been reported.
+  bool reachabilityCheck();
+  static constexpr std::uint64_t kFirstReachBudget = 64, kReachCheckStart = 8192;
+  static constexpr std::uint64_t kMaxReachBudget = std::uint64_t{1} << 20;
 
   /// Lends the problem this search's limit check (SearchProblem::setInterruptCheck) while it
   /// lives: every run() holds one from begin() on, so that no exit leaves the problem holding
@@ -60,7 +68,7 @@ class SearchBase {
     stop_ = s;
     return true;
   }
-  bool stopped() const { return stop_ != SearchStatus::kNoSolution; }
+  bool stopped() const { return stop_ != SearchStatus::kNoSolution || goal_unreachable_; }
   /// Whether `extra` more bytes stay within the memory cap (queues check before they double;
   /// the cap's own check runs every 4096 expansions, too late for a doubling of a big queue).
   bool roomFor(std::size_t extra) const {
@@ -99,6 +107,8 @@ class SearchBase {
   Clock::time_point t0_;
   SearchResult result_;
   SearchStatus stop_ = SearchStatus::kNoSolution;  // kNoSolution means "not stopped"
+  bool goal_unreachable_ = false;  // stopped: the domain proved that no path exists (stop_ stays)
+  std::uint64_t next_reach_check_ = 0;  // reachabilityCheck's next expansion count
 
   std::uint64_t expansions_ = 0;
   std::size_t generated_ = 0;  // states that received search data (g < infinity)

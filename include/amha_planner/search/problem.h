@@ -78,6 +78,19 @@ class SearchProblem {
     (void)key;
   }
 
+  /// True if the goal provably cannot be reached from the start, found by looking at no more
+  /// than `budget` states; false if that is not known. A domain can often tell much sooner than
+  /// a search that must exhaust everything reachable from the start: looking from the goal
+  /// against the edges' direction, the states that reach it may be few (a goal pose that no
+  /// motion can end in, a pocket the robot cannot turn into). Only `true` changes anything: the
+  /// search then stops with kNoSolution, so a domain must say so only on a proof. The search asks
+  /// while it has found no path, at expansion counts spaced by 4x with a budget of a quarter of
+  /// them (docs/search.md, "A goal no path reaches").
+  virtual bool goalUnreachable(std::size_t budget) {
+    (void)budget;
+    return false;
+  }
+
   /// Bytes the domain holds for its states (hash tables, state storage); counted against the
   /// search's memory cap together with the search's own arrays.
   virtual std::size_t memoryBytes() const { return 0; }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -62,6 +63,12 @@ class LatticeProblem final : public SearchProblem {
     for (std::size_t i = 0; i < count; ++i) b[i] = last_bases_[i];
   }
   std::size_t memoryBytes() const override;
+
+  /// Explores from the search's goal against the search's direction (goal_reachability.h), up
+  /// to `budget` states: true if every state that reaches the goal is among them and the start
+  /// is not. False where it cannot tell, and always for a start that escapes a collision.
+  bool goalUnreachable(std::size_t budget) override;
+  void setInterruptCheck(std::function<bool()> check) override { interrupted_ = std::move(check); }
 
   /// Starts instead at a virtual state joined to each of `exits` (collision-free states, each
   /// with what reaching it costs: the escapes of a start in collision, StartEscape) by an edge
@@ -138,6 +145,7 @@ class LatticeProblem final : public SearchProblem {
   std::shared_ptr<const BackwardBound> backward_bound_;
   std::uint64_t backward_key_ = 0;  // the snapshot K the anchor uses; 0: none yet
   BackwardBound* sink_ = nullptr;
+  std::function<bool()> interrupted_;              // the search's limit check, while it runs
   bool bases_ = false;                             // hasInflationBases()
   HeuristicValue last_bases_[kNumGridKinds] = {};  // the bases of the state heuristics() saw last
   bool kinematic_inadmissible_ = false;            // the inadmissible heuristics take the table too
