@@ -62,7 +62,7 @@ bool SearchBase::slowLimitCheck() {
 
 bool SearchBase::reachabilityCheck() {
   if (expansions_ < next_reach_check_ || !result_.solutions.empty()) return false;
-  const std::uint64_t budget = std::clamp(expansions_ / 4, kFirstReachBudget, kMaxReachBudget);
+  const std::uint64_t budget = std::clamp(expansions_ / 16, kFirstReachBudget, kMaxReachBudget);
   next_reach_check_ = std::max(kReachCheckStart, 4 * expansions_);
   goal_unreachable_ = problem_->goalUnreachable(static_cast<std::size_t>(budget));
   return stopped();  // also if the domain's walk was cut short by the limit check (time, cancel)

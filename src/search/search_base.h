@@ -42,11 +42,14 @@ class SearchBase {
     return false;
   }
   bool slowLimitCheck();
-  /// SearchProblem::goalUnreachable at expansions 0, 8192, 4 x 8192, ... (so its work is at most
-  /// a third of the search's), with a budget of a quarter of the expansions so far (at least
-  /// kFirstReachBudget, at most kMaxReachBudget states); never once a path has been reported.
+  /// SearchProblem::goalUnreachable at expansions 0, 32768, 4 x 32768, ..., with a budget of a
+  /// sixteenth of the expansions so far (at least kFirstReachBudget, at most kMaxReachBudget
+  /// states); never once a path has been reported. A state of the lattice's walk costs about as
+  /// much as an expansion, so the asks add at most 1/16 x 4/3 (8 %) to a search without a path,
+  /// and nothing but the first 64 states to the many first paths that come within 32768
+  /// expansions (measured: docs/results/smac.md, "Queries without a path").
   bool reachabilityCheck();
-  static constexpr std::uint64_t kFirstReachBudget = 64, kReachCheckStart = 8192;
+  static constexpr std::uint64_t kFirstReachBudget = 64, kReachCheckStart = 32768;
   static constexpr std::uint64_t kMaxReachBudget = std::uint64_t{1} << 20;
 
   /// Lends the problem this search's limit check (SearchProblem::setInterruptCheck) while it
