@@ -106,11 +106,7 @@ TEST(GoalReachability, TheBudgetCountsTheStatesVisited) {
 // the spot, no reverse) that drives in facing east cannot turn round in it, so a goal there
 // facing west has no path, though its cell is reachable.
 std::shared_ptr<GridMap> roomWithSlot() {
-  auto m = std::make_shared<GridMap>();
-  m->width = 200;
-  m->height = 120;
-  m->resolution = 0.05;
-  m->cost.assign(static_cast<std::size_t>(m->width) * m->height, 0);
+  auto m = test::freeMap(200, 120, 0.05);
   for (int y = 0; y < m->height; ++y) {
     for (int x = 150; x < m->width; ++x) {
       const bool slot = y >= 59 && y <= 61 && x < 190;

@@ -241,11 +241,7 @@ TEST(StartEscape, VirtualStartKeepsTheAnchorConsistent) {
 // A corridor 0.5 m wide between two walls, with inscribed cells along them: a rectangular robot
 // whose rear overlaps the wall at x = 0..2 (0.05 m cells).
 std::shared_ptr<GridMap> corridor() {
-  auto m = std::make_shared<GridMap>();
-  m->width = 80;
-  m->height = 40;
-  m->resolution = 0.05;
-  m->cost.assign(80 * 40, 0);
+  auto m = test::freeMap(80, 40, 0.05);
   for (int y = 0; y < 40; ++y) {
     for (int x = 0; x < 80; ++x) {
       std::uint8_t& c = m->cost[static_cast<std::size_t>(y) * 80 + x];

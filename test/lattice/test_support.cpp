@@ -25,13 +25,18 @@ std::string tempDir() {
   return d != nullptr ? std::string(d) : std::string("/tmp");
 }
 
-std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
-                                   int obstacles, int cost_max) {
+std::shared_ptr<GridMap> freeMap(int width, int height, double resolution) {
   auto m = std::make_shared<GridMap>();
   m->width = width;
   m->height = height;
   m->resolution = resolution;
   m->cost.assign(static_cast<std::size_t>(width) * height, 0);
+  return m;
+}
+
+std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
+                                   int obstacles, int cost_max) {
+  auto m = freeMap(width, height, resolution);
   std::mt19937 rng(seed);
   if (cost_max > 0) {
     std::uniform_int_distribution<int> c(0, cost_max);

@@ -19,6 +19,8 @@ namespace test {
 std::string sharedData();
 /// A fresh empty directory under /tmp.
 std::string tempDir();
+/// A width x height map at `resolution`, every cell free (cost 0).
+std::shared_ptr<GridMap> freeMap(int width, int height, double resolution);
 /// A width x height map at `resolution` with random rectangular obstacles (lethal) and random
 /// cell costs in 0..cost_max elsewhere; a border of free cells is left around (x0, y0) spots.
 std::shared_ptr<GridMap> randomMap(int width, int height, double resolution, unsigned seed,
