@@ -55,16 +55,9 @@ TEST(GoalUnreachable, BudgetsGrowFourfoldWhileNothingIsKnown) {
 // A solvable grid whose domain answers "unreachable" whenever asked: a search must not ask it
 // once it has a path (and the answer at expansion 0 is what a domain that proves it would say,
 // so the first ask must come from a search without a path).
-class LyingAfterAPath : public SearchProblem {
+class LyingAfterAPath : public testing::ExplicitGraph {
  public:
-  explicit LyingAfterAPath(testing::ExplicitGraph* g) : g_(*g) {}
-  StateId start() const override { return g_.start(); }
-  StateId goal() const override { return g_.goal(); }
-  void successors(StateId s, std::vector<Edge>& out) override { g_.successors(s, out); }
-  std::size_t numHeuristics() const override { return g_.numHeuristics(); }
-  void heuristics(StateId s, HeuristicValue* h, std::size_t count) override {
-    g_.heuristics(s, h, count);
-  }
+  explicit LyingAfterAPath(const testing::ExplicitGraph& g) : ExplicitGraph(g) {}
   bool goalUnreachable(std::size_t) override {
     ++asked;
     if (path_reported) ++asked_after_path;
@@ -72,9 +65,6 @@ class LyingAfterAPath : public SearchProblem {
   }
   int asked = 0, asked_after_path = 0;
   bool path_reported = false;
-
- private:
-  testing::ExplicitGraph& g_;
 };
 
 TEST(GoalUnreachable, NeverAskedOnceAPathIsReported) {
@@ -82,8 +72,7 @@ TEST(GoalUnreachable, NeverAskedOnceAPathIsReported) {
   o.n_inadmissible = 3;
   o.anchor_scale = 0.3;  // a weak anchor: the anytime searches go on long after the first path
   for (Algorithm a : kAll) {
-    testing::ExplicitGraph g = testing::randomGrid(300, 300, 0.1, o);
-    LyingAfterAPath p(&g);
+    LyingAfterAPath p(testing::randomGrid(300, 300, 0.1, o));
     const SearchResult r =
         makePlanner(defaultConfig(a))->search(p, SearchLimits(), [&](const Solution&) {
           p.path_reported = true;
