@@ -78,6 +78,12 @@ std::string dlerrorText() {
 }
 
 Module loadModule() {
+  // OpenCV refuses an image above OPENCV_IO_MAX_IMAGE_PIXELS before allocating it; the default,
+  // 2^30, let a file of a few bytes whose header claims ~10^9 colour pixels make imread allocate
+  // 3 GB (found by the map_server fuzzer). OpenCV reads the variable when its library loads, so
+  // it is set here, before the module that links it is opened: 2^28 pixels, 16 times the
+  // largest map the server takes (~max_map_cells); a value the user set is kept.
+  setenv("OPENCV_IO_MAX_IMAGE_PIXELS", "268435456", 0);
   Module m;
   std::string error_path,
       error_text;  // the most useful failure: an existing file beats a missing one
