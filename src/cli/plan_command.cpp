@@ -286,6 +286,7 @@ int planMain(int argc, char** argv) {
       statusName(r.search.status), r.solutions.size(),
       static_cast<unsigned long long>(r.search.expansions), r.search.peak_states,
       r.search.peak_memory_bytes / 1e6, r.heuristic_seconds, r.totalSeconds());
+  if (!r.no_path_reason.empty()) std::printf("no path: %s\n", r.no_path_reason.c_str());
 
   // The result: the last solution, or with --smooth the smoothed path published last.
   std::vector<lattice::Pose2D> result_path;
@@ -318,6 +319,13 @@ int planMain(int argc, char** argv) {
         run["lattice_path"] = poses_json(r.solutions.back().poses);
       }
       run["heuristic_seconds"] = r.heuristic_seconds;
+      if (r.no_path != lattice::NoPathProof::kNone) {
+        run["no_path"] = r.no_path == lattice::NoPathProof::kSearch         ? "search"
+                         : r.no_path == lattice::NoPathProof::kGoalEnclosed ? "goal_enclosed"
+                                                                            : "start_enclosed";
+        run["enclosed_states"] = r.enclosed_states;  // counted by the walk; 0 after a search
+        run["no_path_reason"] = r.no_path_reason;
+      }
       run["search"] = searchConfigToJson(pc);
       nlohmann::json extra = {{"start", {start.x, start.y, start.theta}},
                               {"goal", {goal.x, goal.y, goal.theta}},

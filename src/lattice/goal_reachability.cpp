@@ -11,7 +11,8 @@ namespace lattice {
 Reachability exploreReachable(const LatticeGraph& graph, const std::vector<LatticeState>& seeds,
                               bool against_edges,
                               const std::function<bool(const LatticeState&)>& is_target,
-                              std::size_t budget, const std::function<bool()>& interrupted) {
+                              std::size_t budget, const std::function<bool()>& interrupted,
+                              std::size_t* visited_count) {
   const auto headings = static_cast<std::uint64_t>(graph.numHeadings());
   const auto width = static_cast<std::uint64_t>(graph.width());
   auto key = [&](int x, int y, int h) {
@@ -20,6 +21,13 @@ Reachability exploreReachable(const LatticeGraph& graph, const std::vector<Latti
   };
   std::unordered_set<std::uint64_t> visited;
   std::vector<LatticeState> stack;
+  struct Count {  // reports the states visited on every return
+    std::size_t* out;
+    const std::unordered_set<std::uint64_t>& set;
+    ~Count() {
+      if (out) *out = set.size();
+    }
+  } count{visited_count, visited};
   // False once the budget is spent.
   auto visit = [&](const LatticeState& s) {
     if (!visited.insert(key(s.x, s.y, s.heading)).second) return true;

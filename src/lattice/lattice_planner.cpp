@@ -321,6 +321,48 @@ QueryError LatticePlanner::checkQuery(const Pose2D& start, const Pose2D& goal,
   return e;
 }
 
+namespace {
+
+/// Fills result's no_path, enclosed_states and no_path_reason for a search that ended with
+/// kNoSolution: by a walk from its goal's side (search.goal_side_proof; the robot's start when
+/// searching backward), which counted `walked` states, or by running out of states.
+void describeNoPath(const SearchSummary& search, bool backward, std::size_t walked,
+                    PlanResult* result) {
+  const std::string from = backward ? "goal" : "start", to = backward ? "start" : "goal";
+  if (!search.goal_side_proof) {
+    result->no_path = NoPathProof::kSearch;
+    // The heuristics are computed from the search's goal: a state they give infinity cannot
+    // reach it, and is never expanded.
+    result->no_path_reason = search.expansions == 0
+                                 ? "proven by the heuristics, computed from the " + to +
+                                       "'s side: the " + from + " cannot reach the " + to
+                                 : "proven by the search: it ran out of states from the " + from +
+                                       " after " + std::to_string(search.expansions) +
+                                       (search.expansions == 1 ? " expansion" : " expansions") +
+                                       " (its heuristics, computed from the " + to +
+                                       "'s side, rule out the others)";
+    return;
+  }
+  const bool goal_enclosed = !backward;  // the walk starts at the search's goal
+  result->no_path = goal_enclosed ? NoPathProof::kGoalEnclosed : NoPathProof::kStartEnclosed;
+  result->enclosed_states = walked;
+  const std::string side = goal_enclosed ? "goal" : "start",
+                    other = goal_enclosed ? "start" : "goal";
+  const std::string proven = "proven from the " + side + "'s side: ";
+  if (walked <= 1) {
+    result->no_path_reason = proven + "no valid motion " +
+                             (goal_enclosed ? "ends in the goal's" : "leaves the start's") +
+                             " lattice state (cell and heading)";
+    return;
+  }
+  result->no_path_reason = proven + "only " + std::to_string(walked) +
+                           " lattice states (cell and heading; the " + side + "'s own included) " +
+                           (goal_enclosed ? "lead to the goal" : "can be reached from the start") +
+                           ", and the " + other + " is none of them";
+}
+
+}  // namespace
+
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
                                 const PlannerConfig& algorithm, const SearchLimits& limits,
                                 const std::function<void(const LatticeSolution&)>& on_solution) {
@@ -712,6 +754,8 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
   result.search = static_cast<const SearchSummary&>(planner->search(problem, remaining, cb));
   if (any_heading && !result.solutions.empty())
     result.planned_goal->theta = result.solutions.back().poses.back().theta;
+  if (result.search.status == SearchStatus::kNoSolution && result.solutions.empty())
+    describeNoPath(result.search, backward, problem.enclosedStates(), &result);
   if (escape) {
     result.escape_message =
         describeEscape(start_collision, *escape, start_options,

@@ -185,8 +185,12 @@ bool LatticeProblem::goalUnreachable(std::size_t budget) {
   auto is_start = [&](const LatticeState& s) {
     return s.x == start.x && s.y == start.y && (any_heading || s.heading == start.heading);
   };
-  return exploreReachable(graph_, seeds, !backward_, is_start, budget, interrupted_) ==
-         Reachability::kEnclosed;
+  std::size_t visited = 0;
+  if (exploreReachable(graph_, seeds, !backward_, is_start, budget, interrupted_, &visited) !=
+      Reachability::kEnclosed)
+    return false;
+  enclosed_states_ = visited;
+  return true;
 }
 
 void LatticeProblem::startAtExits(const std::vector<std::pair<LatticeState, Cost>>& exits) {

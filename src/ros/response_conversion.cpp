@@ -233,6 +233,8 @@ void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose
   // Told after the outcome: "...; start (..) is in collision; the path leaves it by ...",
   // "...; goal (..) is in collision; planning to ... instead".
   res->message = std::move(outcome.message);
+  if (res->status == Status::NO_PATH_FOUND && !result.no_path_reason.empty())
+    res->message += " (" + result.no_path_reason + ")";
   if (result.start_escaped) res->message += "; " + result.escape_message;
   if (result.goal_substituted) res->message += "; " + result.message;
 }

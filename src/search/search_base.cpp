@@ -137,6 +137,7 @@ void SearchBase::finish(SearchStatus status) {
   result_.peak_states = generated_;
   result_.peak_memory_bytes = memoryBytes();
   result_.elapsed_s = elapsed();
+  result_.goal_side_proof = status == SearchStatus::kNoSolution && goal_unreachable_;
 }
 
 }  // namespace detail

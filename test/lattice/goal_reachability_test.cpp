@@ -116,31 +116,53 @@ std::shared_ptr<GridMap> roomWithSlot() {
   return m;
 }
 
-TEST(GoalReachability, APlannerSaysAtOnceThatADeadEndGoalHasNoPath) {
+// The car of the slot tests; without the block abstraction its heuristics cannot see the slot
+// (the 2-D grids ignore the heading and the kinematic table the walls), so only a walk can tell.
+LatticeConfig slotCar(bool coarse_anchor) {
   LatticeConfig c;
   c.robot.footprint = test::rectangle(0.04, 0.04);
   c.motion.turning_radius = 0.3;
   c.motion.model = MotionModel::kAckermann;
-  LatticePlanner planner(roomWithSlot(), c);
+  c.heuristics.coarse_anchor = coarse_anchor;
+  return c;
+}
+
+std::size_t countReachable(const LatticeGraph& g, const Pose2D& from) {
+  int x = 0, y = 0, h = 0;
+  EXPECT_TRUE(g.poseToState(from, &x, &y, &h));
+  const std::vector<Cost> d = test::dijkstraFrom(
+      g, LatticeState{x, y, h},
+      [&](int cx, int cy, const LatticeAction& a) { return g.edgeCost(cx, cy, a); });
+  return static_cast<std::size_t>(
+      std::count_if(d.begin(), d.end(), [](Cost v) { return v < kInfiniteCost; }));
+}
+
+TEST(GoalReachability, APlannerSaysAtOnceThatADeadEndGoalHasNoPath) {
   const Pose2D start{1.0, 1.0, 0.0};
   const Pose2D into_slot{9.0, 3.025, 0.0}, out_of_slot{9.0, 3.025, 3.141593};
   SearchLimits limits;
   limits.time_limit_s = 20;
-  // Facing in: a path.
-  const PlanResult in = planner.plan(start, into_slot, defaultConfig(Algorithm::kAmhaStar), limits);
+  // The default heuristics: the block abstraction, computed from the goal, rules the start out
+  // before anything is expanded.
+  LatticePlanner with_blocks(roomWithSlot(), slotCar(true));
+  const PlanResult in =
+      with_blocks.plan(start, into_slot, defaultConfig(Algorithm::kAmhaStar), limits);
   ASSERT_EQ(in.error, QueryError::kNone) << in.message;
   EXPECT_TRUE(in.hasSolution());
-  // Facing out: none, found from the goal's few states instead of the room's hundreds of
-  // thousands, for every algorithm.
-  const LatticeGraph& g = planner.graph();
-  int sx = 0, sy = 0, sh = 0;
-  ASSERT_TRUE(g.poseToState(start, &sx, &sy, &sh));
-  const std::vector<Cost> d =
-      test::dijkstraFrom(g, LatticeState{sx, sy, sh},
-                         [&](int x, int y, const LatticeAction& a) { return g.edgeCost(x, y, a); });
-  const auto from_start =
-      std::count_if(d.begin(), d.end(), [](Cost v) { return v < kInfiniteCost; });
-  EXPECT_GT(from_start, 200000);
+  EXPECT_EQ(in.no_path, NoPathProof::kNone);
+  EXPECT_EQ(in.no_path_reason, "");
+  const PlanResult seen =
+      with_blocks.plan(start, out_of_slot, defaultConfig(Algorithm::kAmhaStar), limits);
+  EXPECT_EQ(seen.search.status, SearchStatus::kNoSolution);
+  EXPECT_EQ(seen.search.expansions, 0u);
+  EXPECT_EQ(seen.no_path, NoPathProof::kSearch);
+  EXPECT_EQ(seen.no_path_reason,
+            "proven by the heuristics, computed from the goal's side: the start cannot reach the "
+            "goal");
+  // Without it: no path, found from the goal's few states instead of the room's hundreds of
+  // thousands, for every algorithm, and said so.
+  LatticePlanner planner(roomWithSlot(), slotCar(false));
+  EXPECT_GT(countReachable(planner.graph(), start), 200000u);
   for (Algorithm a :
        {Algorithm::kAmhaStar, Algorithm::kAraStar, Algorithm::kAnaStar, Algorithm::kAStar}) {
     const PlanResult out = planner.plan(start, out_of_slot, defaultConfig(a), limits);
@@ -148,6 +170,56 @@ TEST(GoalReachability, APlannerSaysAtOnceThatADeadEndGoalHasNoPath) {
     EXPECT_FALSE(out.hasSolution()) << algorithmName(a);
     EXPECT_EQ(out.search.status, SearchStatus::kNoSolution) << algorithmName(a);
     EXPECT_LE(out.search.expansions, 32768u) << algorithmName(a);
+    EXPECT_TRUE(out.search.goal_side_proof) << algorithmName(a);
+    EXPECT_EQ(out.no_path, NoPathProof::kGoalEnclosed) << algorithmName(a);
+    EXPECT_GT(out.enclosed_states, 1u) << algorithmName(a);
+    EXPECT_LT(out.enclosed_states, 20000u) << algorithmName(a);
+    EXPECT_EQ(out.no_path_reason,
+              "proven from the goal's side: only " + std::to_string(out.enclosed_states) +
+                  " lattice states (cell and heading; the goal's own included) lead to the goal, "
+                  "and the start is none of them")
+        << algorithmName(a);
+  }
+}
+
+// A start in the slot facing its end: the robot reaches a few states and never the room.
+// Forward, the search runs out of them; backward, the walk forward from the start counts them,
+// exactly as a Dijkstra from the start does.
+TEST(GoalReachability, AnEnclosedStartIsToldFromTheStartsSide) {
+  const Pose2D stuck{9.0, 3.025, 0.0}, goal{1.0, 1.0, 0.0};
+  SearchLimits limits;
+  limits.time_limit_s = 20;
+  LatticePlanner forward(roomWithSlot(), slotCar(false));
+  const PlanResult f = forward.plan(stuck, goal, defaultConfig(Algorithm::kAStar), limits);
+  ASSERT_EQ(f.error, QueryError::kNone) << f.message;
+  EXPECT_EQ(f.search.status, SearchStatus::kNoSolution);
+  EXPECT_GT(f.search.expansions, 0u);
+  EXPECT_FALSE(f.search.goal_side_proof);
+  EXPECT_EQ(f.no_path, NoPathProof::kSearch);
+  EXPECT_EQ(f.enclosed_states, 0u) << "exhausted by the search, not walked";
+  EXPECT_EQ(f.no_path_reason, "proven by the search: it ran out of states from the start after " +
+                                  std::to_string(f.search.expansions) +
+                                  " expansions (its heuristics, computed from the goal's side, "
+                                  "rule out the others)");
+
+  LatticeConfig c = slotCar(false);
+  c.backward_search = true;
+  LatticePlanner backward(roomWithSlot(), c);
+  const std::size_t reached = countReachable(backward.graph(), stuck);
+  ASSERT_GT(reached, 1u);
+  ASSERT_LT(reached, 20000u);
+  for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAStar}) {
+    const PlanResult b = backward.plan(stuck, goal, defaultConfig(a), limits);
+    ASSERT_EQ(b.error, QueryError::kNone) << b.message;
+    EXPECT_EQ(b.search.status, SearchStatus::kNoSolution) << algorithmName(a);
+    EXPECT_TRUE(b.search.goal_side_proof) << algorithmName(a);
+    EXPECT_EQ(b.no_path, NoPathProof::kStartEnclosed) << algorithmName(a);
+    EXPECT_EQ(b.enclosed_states, reached) << algorithmName(a);
+    EXPECT_EQ(b.no_path_reason, "proven from the start's side: only " + std::to_string(reached) +
+                                    " lattice states (cell and heading; the start's own "
+                                    "included) can be reached from the start, and the goal is "
+                                    "none of them")
+        << algorithmName(a);
   }
 }
 

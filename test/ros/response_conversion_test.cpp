@@ -156,6 +156,22 @@ TEST(PlanResponse, EverySearchStatusWithoutASolutionGivesItsCodeAndMessage) {
   }
 }
 
+TEST(PlanResponse, NoPathSaysWhatProvedIt) {
+  lat::PlanResult r = searchEnded(SearchStatus::kNoSolution, 0);
+  r.no_path = lat::NoPathProof::kGoalEnclosed;
+  r.enclosed_states = 2006;
+  r.no_path_reason = "proven from the goal's side: only 2006 lattice states lead to the goal";
+  const Plan::Response res = complete(r, 0);
+  EXPECT_EQ(res.status, Status::NO_PATH_FOUND);
+  EXPECT_EQ(res.message,
+            "no path: the goal cannot be reached from the start on this map (proven from the "
+            "goal's side: only 2006 lattice states lead to the goal)");
+  // Only a search without a solution says it: after one, the status is an internal error.
+  lat::PlanResult after = searchEnded(SearchStatus::kNoSolution, 1);
+  after.no_path_reason = r.no_path_reason;
+  EXPECT_EQ(complete(after, 1).message.find("proven"), std::string::npos);
+}
+
 TEST(PlanResponse, EverySearchStatusAfterASolutionGivesItsCodeAndMessage) {
   const std::string summary = "2 solution(s), best cost 13.346 m, bound 2.50, certified 2.25";
   const std::string so_far = "; returning the best path so far: " + summary;

@@ -37,6 +37,7 @@ TEST(GoalUnreachable, AskedOnASpacedScheduleAndStopsTheSearchWithNoSolution) {
     const SearchResult r = makePlanner(defaultConfig(a))->search(grid, limits);
     EXPECT_EQ(r.status, SearchStatus::kNoSolution) << algorithmName(a);
     EXPECT_FALSE(r.hasSolution());
+    EXPECT_TRUE(r.goal_side_proof) << algorithmName(a);
     // Asked at 0 (budget 64) and at 32768 expansions (2048 states), which proves it.
     EXPECT_EQ(grid.budgets, (std::vector<std::size_t>{64, 2048})) << algorithmName(a);
     EXPECT_EQ(r.expansions, 32768u) << algorithmName(a);
@@ -49,6 +50,7 @@ TEST(GoalUnreachable, BudgetsGrowFourfoldWhileNothingIsKnown) {
   limits.max_expansions = 2200000;
   const SearchResult r = makePlanner(defaultConfig(Algorithm::kAStar))->search(grid, limits);
   EXPECT_EQ(r.status, SearchStatus::kExpansionLimit);
+  EXPECT_FALSE(r.goal_side_proof);
   EXPECT_EQ(grid.budgets, (std::vector<std::size_t>{64, 2048, 8192, 32768, 131072}));
 }
 

@@ -30,6 +30,7 @@ TEST(Limits, UnreachableGoalEndsWithNoSolution) {
     const SearchResult r = makePlanner(defaultConfig(a))->search(g, SearchLimits());
     EXPECT_EQ(r.status, SearchStatus::kNoSolution) << algorithmName(a);
     EXPECT_FALSE(r.hasSolution());
+    EXPECT_FALSE(r.goal_side_proof) << "the start's states ran out: " << algorithmName(a);
   }
 }
 

@@ -82,6 +82,14 @@ struct LatticeSolution {
   Cost escape_cost = 0;
 };
 
+/// With no path: what proved it.
+enum class NoPathProof {
+  kNone,           ///< not proven (another status, or a solution)
+  kSearch,         ///< the search ran out of states its heuristics did not rule out
+  kStartEnclosed,  ///< a walk found every state the start reaches, the goal none of them
+  kGoalEnclosed,   ///< a walk found every state that reaches the goal, the start none of them
+};
+
 /// Where a query's heuristic grids came from.
 enum class HeuristicSource {
   kCached,    ///< the cache (or another call computing them at the same time)
@@ -134,6 +142,14 @@ struct PlanResult {
 
   /// How the last solution left the start's collision (empty without an escape).
   std::string escape_message;
+  /// With search.status kNoSolution: what proved that no path exists; with a walk
+  /// (goal_reachability.h), how many lattice states (cell and heading) the enclosed side holds,
+  /// else 0; and no_path_reason says it for a user, e.g. "proven from the goal's side: only 2006
+  /// lattice states (cell and heading; the goal's own included) lead to the goal, and the start
+  /// is none of them". Empty, kNone and 0 otherwise.
+  NoPathProof no_path = NoPathProof::kNone;
+  std::size_t enclosed_states = 0;
+  std::string no_path_reason;
   /// Seconds spent finding the escapes (they count against limits.time_limit_s too).
   double escape_seconds = 0.0;
 };

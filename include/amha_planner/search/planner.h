@@ -159,6 +159,10 @@ struct SearchSummary {
   std::size_t peak_states = 0;        ///< states generated (with search data) at the end
   std::size_t peak_memory_bytes = 0;  ///< search arrays + domain, as counted for the cap
   double elapsed_s = 0.0;
+  /// With kNoSolution: true when the domain proved it from the goal's side
+  /// (SearchProblem::goalUnreachable: the states that reach the goal ran out, the start none of
+  /// them), false when the search ran out of states from the start.
+  bool goal_side_proof = false;
 };
 
 struct SearchResult : SearchSummary {

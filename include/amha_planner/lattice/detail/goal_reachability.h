@@ -32,12 +32,14 @@ enum class Reachability {
 /// Explores from `seeds` along the lattice's edges reversed (against_edges: the states each
 /// state is reached from) or as they are, looking for a state that `is_target` accepts (a
 /// target's heading may be any). Visits at most `budget` states; calls `interrupted`, if given,
-/// every 4096 states.
+/// every 4096 states. `visited`, if given, receives how many states it visited (with kEnclosed:
+/// every state connected to the seeds).
 Reachability exploreReachable(const LatticeGraph& graph, const std::vector<LatticeState>& seeds,
                               bool against_edges,
                               const std::function<bool(const LatticeState&)>& is_target,
                               std::size_t budget,
-                              const std::function<bool()>& interrupted = nullptr);
+                              const std::function<bool()>& interrupted = nullptr,
+                              std::size_t* visited = nullptr);
 
 }  // namespace lattice
 }  // namespace amha

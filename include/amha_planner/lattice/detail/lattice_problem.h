@@ -68,6 +68,9 @@ class LatticeProblem final : public SearchProblem {
   /// to `budget` states: true if every state that reaches the goal is among them and the start
   /// is not. False where it cannot tell, and always for a start that escapes a collision.
   bool goalUnreachable(std::size_t budget) override;
+  /// After goalUnreachable() said true: how many lattice states reach the search's goal (a
+  /// backward search's: how many the start reaches). 0 before.
+  std::size_t enclosedStates() const { return enclosed_states_; }
   void setInterruptCheck(std::function<bool()> check) override { interrupted_ = std::move(check); }
 
   /// Starts instead at a virtual state joined to each of `exits` (collision-free states, each
@@ -146,6 +149,7 @@ class LatticeProblem final : public SearchProblem {
   std::uint64_t backward_key_ = 0;  // the snapshot K the anchor uses; 0: none yet
   BackwardBound* sink_ = nullptr;
   std::function<bool()> interrupted_;              // the search's limit check, while it runs
+  std::size_t enclosed_states_ = 0;                // enclosedStates()
   bool bases_ = false;                             // hasInflationBases()
   HeuristicValue last_bases_[kNumGridKinds] = {};  // the bases of the state heuristics() saw last
   bool kinematic_inadmissible_ = false;            // the inadmissible heuristics take the table too
