@@ -84,9 +84,9 @@ class SearchProblem {
   /// against the edges' direction, the states that reach it may be few (a goal pose that no
   /// motion can end in, a pocket the robot cannot turn into). Only `true` changes anything: the
   /// search then stops with kNoSolution (and SearchSummary::goal_side_proof), so a domain must
-  /// say so only on a proof. The search asks
-  /// while it has found no path, at expansion counts spaced by 4x with a budget of a sixteenth
-  /// of them (docs/search.md, "A goal no path reaches").
+  /// say so only on a proof. The search asks while it has found no path, at expansion counts
+  /// spaced by 4x with a budget of a sixteenth of them (docs/search.md, "A goal no path
+  /// reaches").
   virtual bool goalUnreachable(std::size_t budget) {
     (void)budget;
     return false;
