@@ -755,6 +755,10 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
   EXPECT_TRUE(waitForProbe(Status::INVALID_START, 20.0)) << "the new map was not adopted";
   const auto closed = plan(kMazeStart, kMazeGoal, 5.0);
   EXPECT_EQ(closed.status, Status::NO_PATH_FOUND) << closed.message;
+  // The answer says what proved it (the walk, the search or the heuristics).
+  EXPECT_NE(closed.message.find("cannot be reached from the start on this map (proven "),
+            std::string::npos)
+      << closed.message;
   // Then the original one again.
   g_map_pub.publish(testMap());
   EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the original map was not restored";
