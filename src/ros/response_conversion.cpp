@@ -28,6 +28,10 @@ AMHA_SAME_CODE(INVALID_REQUEST);
 AMHA_SAME_CODE(INTERNAL_ERROR);
 AMHA_SAME_CODE(OUT_OF_MAP);
 AMHA_SAME_CODE(BUSY);
+AMHA_SAME_CODE(NO_PATH_NOT_PROVEN);
+AMHA_SAME_CODE(NO_PATH_SEARCH);
+AMHA_SAME_CODE(NO_PATH_GOAL_ENCLOSED);
+AMHA_SAME_CODE(NO_PATH_START_ENCLOSED);
 #undef AMHA_SAME_CODE
 
 namespace {
@@ -113,9 +117,25 @@ void moveResponse(Plan::Response&& in, Result* out) {
   out->planned_goal = std::move(in.planned_goal);
   out->start_escaped = in.start_escaped;
   out->escape_end = std::move(in.escape_end);
+  out->no_path_proof = in.no_path_proof;
+  out->enclosed_states = in.enclosed_states;
 }
 
 }  // namespace
+
+std::uint8_t noPathProofCode(lat::NoPathProof p) {
+  switch (p) {
+    case lat::NoPathProof::kSearch:
+      return Status::NO_PATH_SEARCH;
+    case lat::NoPathProof::kGoalEnclosed:
+      return Status::NO_PATH_GOAL_ENCLOSED;
+    case lat::NoPathProof::kStartEnclosed:
+      return Status::NO_PATH_START_ENCLOSED;
+    case lat::NoPathProof::kNone:
+      break;
+  }
+  return Status::NO_PATH_NOT_PROVEN;
+}
 
 const char* statusCodeName(std::uint32_t s) {
   switch (s) {
@@ -233,8 +253,11 @@ void completeResponse(const lat::PlanResult& result, const std::vector<lat::Pose
   // Told after the outcome: "...; start (..) is in collision; the path leaves it by ...",
   // "...; goal (..) is in collision; planning to ... instead".
   res->message = std::move(outcome.message);
-  if (res->status == Status::NO_PATH_FOUND && !result.no_path_reason.empty())
+  if (res->status == Status::NO_PATH_FOUND && !result.no_path_reason.empty()) {
     res->message += " (" + result.no_path_reason + ")";
+    res->no_path_proof = noPathProofCode(result.no_path);
+    res->enclosed_states = result.enclosed_states;
+  }
   if (result.start_escaped) res->message += "; " + result.escape_message;
   if (result.goal_substituted) res->message += "; " + result.message;
 }

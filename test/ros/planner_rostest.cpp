@@ -759,6 +759,7 @@ TEST(PlannerNodelet, NewMapDuringALongPlanNeitherCrashesNorCorruptsIt) {
   EXPECT_NE(closed.message.find("cannot be reached from the start on this map (proven "),
             std::string::npos)
       << closed.message;
+  EXPECT_NE(closed.no_path_proof, Status::NO_PATH_NOT_PROVEN);
   // Then the original one again.
   g_map_pub.publish(testMap());
   EXPECT_TRUE(waitForProbe(Status::INVALID_GOAL, 20.0)) << "the original map was not restored";

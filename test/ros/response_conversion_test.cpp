@@ -166,6 +166,18 @@ TEST(PlanResponse, NoPathSaysWhatProvedIt) {
   EXPECT_EQ(res.message,
             "no path: the goal cannot be reached from the start on this map (proven from the "
             "goal's side: only 2006 lattice states lead to the goal)");
+  EXPECT_EQ(res.no_path_proof, Status::NO_PATH_GOAL_ENCLOSED);
+  EXPECT_EQ(res.enclosed_states, 2006u);
+  EXPECT_EQ(noPathProofCode(lat::NoPathProof::kNone), Status::NO_PATH_NOT_PROVEN);
+  EXPECT_EQ(noPathProofCode(lat::NoPathProof::kSearch), Status::NO_PATH_SEARCH);
+  EXPECT_EQ(noPathProofCode(lat::NoPathProof::kStartEnclosed), Status::NO_PATH_START_ENCLOSED);
+  // Any other answer is not proven, whatever the result holds (a goal tolerance's refusal).
+  lat::PlanResult refused = r;
+  refused.error = lat::QueryError::kGoalUnreachable;
+  const Plan::Response other = complete(refused, 0);
+  EXPECT_EQ(other.status, Status::NO_PATH_FOUND);
+  EXPECT_EQ(other.no_path_proof, Status::NO_PATH_NOT_PROVEN);
+  EXPECT_EQ(other.enclosed_states, 0u);
   // Only a search without a solution says it: after one, the status is an internal error.
   lat::PlanResult after = searchEnded(SearchStatus::kNoSolution, 1);
   after.no_path_reason = r.no_path_reason;
@@ -303,6 +315,8 @@ TEST(PlanResponse, TheActionResultCarriesEveryField) {
   res.goal_substituted = true;
   res.escape_end.header.frame_id = "map";
   res.escape_end.pose.position.x = 0.5;
+  res.no_path_proof = Status::NO_PATH_START_ENCLOSED;  // not a cancel's, but every field counts
+  res.enclosed_states = 77;
   const std::vector<std::uint8_t> response = serialized(res);
   // The result repeats the response's fields in the same order: the same bytes when every
   // field is carried over.

@@ -21,6 +21,9 @@ namespace amha_planner {
 /// "UNKNOWN" for a number that is none of them.
 const char* statusCodeName(std::uint32_t status);
 
+/// Plan.srv's no_path_proof for the lattice planner's NoPathProof (NO_PATH_NOT_PROVEN for kNone).
+std::uint8_t noPathProofCode(amha::lattice::NoPathProof proof);
+
 /// The status code of a query the lattice planner refused (INTERNAL_ERROR for kNone).
 std::uint32_t statusForQueryError(amha::lattice::QueryError error);
 
