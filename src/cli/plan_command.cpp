@@ -320,9 +320,7 @@ int planMain(int argc, char** argv) {
       }
       run["heuristic_seconds"] = r.heuristic_seconds;
       if (r.no_path != lattice::NoPathProof::kNone) {
-        run["no_path"] = r.no_path == lattice::NoPathProof::kSearch         ? "search"
-                         : r.no_path == lattice::NoPathProof::kGoalEnclosed ? "goal_enclosed"
-                                                                            : "start_enclosed";
+        run["no_path"] = lattice::noPathProofName(r.no_path);
         run["enclosed_states"] = r.enclosed_states;  // counted by the walk; 0 after a search
         run["no_path_reason"] = r.no_path_reason;
       }

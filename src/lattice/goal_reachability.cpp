@@ -21,13 +21,6 @@ Reachability exploreReachable(const LatticeGraph& graph, const std::vector<Latti
   };
   std::unordered_set<std::uint64_t> visited;
   std::vector<LatticeState> stack;
-  struct Count {  // reports the states visited on every return
-    std::size_t* out;
-    const std::unordered_set<std::uint64_t>& set;
-    ~Count() {
-      if (out) *out = set.size();
-    }
-  } count{visited_count, visited};
   // False once the budget is spent.
   auto visit = [&](const LatticeState& s) {
     if (!visited.insert(key(s.x, s.y, s.heading)).second) return true;
@@ -67,6 +60,7 @@ Reachability exploreReachable(const LatticeGraph& graph, const std::vector<Latti
       }
     }
   }
+  if (visited_count != nullptr) *visited_count = visited.size();
   return Reachability::kEnclosed;
 }
 

@@ -343,12 +343,11 @@ void describeNoPath(const SearchSummary& search, bool backward, std::size_t walk
                                        "'s side, rule out the others)";
     return;
   }
-  const bool goal_enclosed = !backward;  // the walk starts at the search's goal
+  // The walk starts at the search's goal (`to`): that end is enclosed, `from` none of its states.
+  const bool goal_enclosed = !backward;
   result->no_path = goal_enclosed ? NoPathProof::kGoalEnclosed : NoPathProof::kStartEnclosed;
   result->enclosed_states = walked;
-  const std::string side = goal_enclosed ? "goal" : "start",
-                    other = goal_enclosed ? "start" : "goal";
-  const std::string proven = "proven from the " + side + "'s side: ";
+  const std::string proven = "proven from the " + to + "'s side: ";
   if (walked <= 1) {
     result->no_path_reason = proven + "no valid motion " +
                              (goal_enclosed ? "ends in the goal's" : "leaves the start's") +
@@ -356,9 +355,9 @@ void describeNoPath(const SearchSummary& search, bool backward, std::size_t walk
     return;
   }
   result->no_path_reason = proven + "only " + std::to_string(walked) +
-                           " lattice states (cell and heading; the " + side + "'s own included) " +
+                           " lattice states (cell and heading; the " + to + "'s own included) " +
                            (goal_enclosed ? "lead to the goal" : "can be reached from the start") +
-                           ", and the " + other + " is none of them";
+                           ", and the " + from + " is none of them";
 }
 
 }  // namespace
@@ -836,6 +835,20 @@ const char* heuristicSourceName(HeuristicSource s) {
       return "computed";
     case HeuristicSource::kRepaired:
       return "repaired";
+  }
+  return "unknown";
+}
+
+const char* noPathProofName(NoPathProof p) {
+  switch (p) {
+    case NoPathProof::kNone:
+      return "none";
+    case NoPathProof::kSearch:
+      return "search";
+    case NoPathProof::kStartEnclosed:
+      return "start_enclosed";
+    case NoPathProof::kGoalEnclosed:
+      return "goal_enclosed";
   }
   return "unknown";
 }

@@ -248,6 +248,7 @@ class LatticePlanner {
 PlannerConfig defaultPlannerConfig(Algorithm algorithm);
 
 const char* queryErrorName(QueryError e);
+const char* noPathProofName(NoPathProof p);
 const char* heuristicSourceName(HeuristicSource s);
 
 }  // namespace lattice

@@ -32,8 +32,8 @@ enum class Reachability {
 /// Explores from `seeds` along the lattice's edges reversed (against_edges: the states each
 /// state is reached from) or as they are, looking for a state that `is_target` accepts (a
 /// target's heading may be any). Visits at most `budget` states; calls `interrupted`, if given,
-/// every 4096 states. `visited`, if given, receives how many states it visited (with kEnclosed:
-/// every state connected to the seeds).
+/// every 4096 states. With kEnclosed, `visited`, if given, receives how many states are
+/// connected to the seeds (all of them visited).
 Reachability exploreReachable(const LatticeGraph& graph, const std::vector<LatticeState>& seeds,
                               bool against_edges,
                               const std::function<bool(const LatticeState&)>& is_target,
