@@ -18,5 +18,10 @@ void keepFreedMemoryMapped(std::size_t max_pooled_bytes) {
   mallopt(M_TRIM_THRESHOLD, -1);  // -1: never trim
 }
 
+bool unmapFreedLargeBlocks() {
+  constexpr int kThresholdBytes = 128 * 1024;  // glibc's own initial threshold
+  return mallopt(M_MMAP_THRESHOLD, kThresholdBytes) == 1;
+}
+
 }  // namespace cli
 }  // namespace amha

@@ -1,4 +1,5 @@
-// Process-wide allocator tuning for benchmark commands that run many searches in a row.
+// Process-wide allocator tuning: for benchmark commands that run many searches in a row, and
+// for `amha plan`, which runs one.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +15,15 @@ namespace cli {
 /// 15-puzzles (docs/results/tiles.md). Call before the first large allocation. Between runs
 /// the pool keeps at most `max_pooled_bytes`; the heap keeps its peak.
 void keepFreedMemoryMapped(std::size_t max_pooled_bytes);
+
+/// The opposite, for a command that plans once: every block of 128 KiB or more is mapped on its
+/// own and unmapped when freed (mallopt M_MMAP_THRESHOLD at glibc's initial 128 KiB, held there).
+/// By default glibc raises that threshold to the size of each large block it frees (up to
+/// 32 MiB), so after the kinematic table's and the grids' temporaries are freed the planner's
+/// later arrays come from the arenas, where what is freed stays resident under the search's
+/// peak: 1-2 MB of `amha plan`'s peak RSS on Willow Garage at 5 cm (docs/results/smac.md).
+/// Returns false if glibc refused. Call before the first large allocation.
+bool unmapFreedLargeBlocks();
 
 }  // namespace cli
 }  // namespace amha

@@ -12,6 +12,7 @@
 #include "amha_planner/lattice/path_smoother.h"
 #include "command_registry.h"
 #include "exit_codes.h"
+#include "keep_freed_memory.h"
 #include "lattice_image.h"
 #include "lattice_options.h"
 #include "path_metrics.h"
@@ -25,6 +26,8 @@ namespace cli {
 namespace {
 
 int planMain(int argc, char** argv) {
+  // One plan per process: what is freed goes back to the kernel at once (keep_freed_memory.h).
+  unmapFreedLargeBlocks();
   CLI::App app(
       "Plans a path for a robot with (x, y, heading) states on a map, anytime: every improved "
       "solution is printed as it is found.",
