@@ -57,7 +57,7 @@ void LatticeOptions::addTo(CLI::App& app) {
   app.add_option(
       "--kinematic-radius", kinematic_radius,
       "metres: the anchor's obstacle-free kinematic cost-to-go table covers this radius around "
-      "the goal (0: no table; default 15)");
+      "the goal (0: no table; default 10)");
   app.add_option("--anchor-connectivity", anchor_connectivity,
                  "moves of the anchor's grid: 8 or 16 (default 16)")
       ->check(CLI::IsMember({8, 16}));

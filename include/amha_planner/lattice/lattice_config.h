@@ -116,7 +116,7 @@ struct LatticeConfig {
     /// the cheapest primitive sequence on an empty map, kinematic_table.h) within this radius
     /// of the goal, in metres (0: off). Admissible and consistent; the tables are built once
     /// per primitive set and shared by every query and map.
-    double kinematic_radius = 15.0;
+    double kinematic_radius = 10.0;
     /// Add to the Euclidean and grid parts of the anchor a turning term: the cheapest cost of
     /// turning to the goal's heading (admissible and consistent either way). Off by default:
     /// under an inflation weight it draws the search towards states that face the goal's
