@@ -275,6 +275,8 @@ void LatticeGraph::buildActions(const StopCondition* stop) {
   action_index_[n] = actions_.size();
   linkActionsInto();
   // Clearance only decides "clearance > sweep_radius": a cell keeps its class (clearance()).
+  any_swept_ = std::any_of(actions_.begin(), actions_.end(),
+                           [](const LatticeAction& a) { return a.swept_end != a.swept_begin; });
   std::vector<float> sweeps;
   for (const LatticeAction& a : actions_) sweeps.push_back(a.sweep_radius);
   class_radii_ = clearanceClassRadii(std::move(sweeps));
@@ -322,6 +324,21 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   const std::size_t cells = static_cast<std::size_t>(w) * h;
   const bool openings = config_.heuristics.num_inadmissible >= 2;
   const std::array<double, 2> radii = openingRadii();
+  // A point robot sweeps no cell and opens nothing: no distance transform, no clearance (a byte
+  // a cell: 4 MB on a 2000 x 2000 map).
+  if (!any_swept_ && (!openings || (radii[0] <= 0.0 && radii[1] <= 0.0))) {
+    clearance_.clear();
+    clearance_.shrink_to_fit();
+    if (openings) {
+      for (auto& o : opened_) {
+        o.clear();
+        o.shrink_to_fit();
+      }
+      openings_shared_ = radii[1] == radii[0];
+      openings_equal_ = true;
+    }
+    return;
+  }
   // Reading the map dependenceMargin() around `out` gives every cell of `out` exactly the value
   // a whole-map computation gives it. Cells near the crop's edge may get wrong values (they do
   // not see obstacles beyond it), but they are more than r from `out`, too far to matter.
@@ -342,11 +359,11 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   }
   cv::Mat dist;
   cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  clearance_.resize(cells);
+  clearance_.resize(any_swept_ ? cells : 0);
   const float* class_radii = class_radii_.data();
   const int num_radii = static_cast<int>(class_radii_.size());
   const float top = num_radii > 0 ? class_radii[num_radii - 1] : 0.0f;
-  for (int y = out.y0; y < out.y1; ++y) {
+  for (int y = out.y0; any_swept_ && y < out.y1; ++y) {
     const float* d = dist.ptr<float>(y + 1 - cy0);  // d[x + 1 - cx0]: cell (x, y)
     std::uint8_t* c = clearance_.data() + static_cast<std::size_t>(y) * w;
     for (int x = out.x0; x < out.x1; ++x) {

@@ -207,7 +207,9 @@ bool PathSmoother::provablyFree(double cx, double cy, double reach) const {
   const double needed = graph_.footprint().circumscribed_radius / m.resolution + reach + 1.4143;
   const std::vector<float>& radii = graph_.clearanceRadii();
   const std::size_t k = std::lower_bound(radii.begin(), radii.end(), needed) - radii.begin();
-  return k < radii.size() && graph_.clearance()[static_cast<std::size_t>(y) * m.width + x] > k;
+  const std::vector<std::uint8_t>& clearance = graph_.clearance();  // empty: nothing sweeps
+  return k < radii.size() && !clearance.empty() &&
+         clearance[static_cast<std::size_t>(y) * m.width + x] > k;
 }
 
 namespace {

@@ -212,6 +212,54 @@ TEST(LatticeIncremental, ClearanceClassRadiiAreAtMost255AndNeverBelowARadius) {
   }
 }
 
+// A point robot (e.g. on a costmap already inflated by the robot's radius) sweeps no cell
+// beyond its centre cells: its graph keeps no clearance (a byte a map cell), and each edge is
+// valid exactly when every centre cell is inside the map and below inscribed, at the cost of
+// the worst of them; a round robot keeps one.
+TEST(LatticeClearance, APointRobotKeepsNoneAndItsEdgesTestTheirCentreCells) {
+  std::shared_ptr<GridMap> map = test::randomMap(120, 90, 0.05, 5, 18, 40);
+  std::mt19937 rng(3);
+  for (std::uint8_t& c : map->cost) {  // inscribed and unknown cells too
+    const unsigned r = rng() % 50;
+    if (r == 0) c = kInscribedCost;
+    if (r == 1) c = kUnknownCost;
+  }
+  LatticeConfig round;
+  round.robot.radius = 0.2;
+  EXPECT_EQ(LatticeGraph(map, round).clearance().size(), map->cost.size());
+  LatticeConfig point;
+  point.robot.radius = 0.0;
+  const LatticeGraph graph(map, point);
+  EXPECT_TRUE(graph.clearance().empty());
+  int valid = 0, invalid = 0;
+  for (std::size_t i = 0; i < graph.actions().size(); ++i) {
+    const LatticeAction& a = graph.actions()[i];
+    ASSERT_EQ(a.swept_begin, a.swept_end);
+    for (int y = 0; y < map->height; ++y) {
+      for (int x = 0; x < map->width; ++x) {
+        Cost expected = kInvalidEdge;
+        unsigned worst = 0;
+        bool ok = true;
+        for (const CellOffset& c : graph.actionCells(i).centre) {
+          const int cx = x + c.dx, cy = y + c.dy;
+          if (cx < 0 || cy < 0 || cx >= map->width || cy >= map->height ||
+              map->at(cx, cy) >= kInscribedCost) {
+            ok = false;
+            break;
+          }
+          worst = std::max<unsigned>(worst, map->at(cx, cy));
+        }
+        if (ok) expected = graph.costWithPenalty(a.base_cost, worst);
+        ASSERT_EQ(graph.edgeCost(x, y, a), expected)
+            << "action " << i << " from (" << x << ", " << y << ")";
+        ++(ok ? valid : invalid);
+      }
+    }
+  }
+  EXPECT_GT(valid, 0);
+  EXPECT_GT(invalid, 0);
+}
+
 TEST(LatticeIncremental, AnEmptyChangeCopiesAndAnotherGridIsRefused) {
   auto map = test::randomMap(80, 60, 0.05, 5, 8, 0);
   LatticeConfig config;

@@ -113,7 +113,8 @@ class LatticeGraph {
       if (c >= kInscribedCost) return kInvalidEdge;
       worst = c > worst ? c : worst;
     }
-    if (clearance_[base] <= a.sweep_class) {
+    // No swept cells (a point robot): no clearance kept, nothing to test.
+    if (a.swept_end != a.swept_begin && clearance_[base] <= a.sweep_class) {
       for (std::uint32_t k = a.swept_begin; k < a.swept_end; ++k) {
         if (cost[offsets_[k]] >= kLethalCost) return kInvalidEdge;
       }
@@ -157,7 +158,9 @@ class LatticeGraph {
   /// Per cell, its clearance class: how many of the distinct sweep radii (ascending) the
   /// distance from its centre to the nearest lethal/unknown cell centre exceeds. The search
   /// asks only "clearance > sweep radius", which a byte answers as well as the distance (a
-  /// quarter of a float's memory, and of what an incremental build copies).
+  /// quarter of a float's memory, and of what an incremental build copies). Empty when no
+  /// action sweeps a cell beyond its centre cells (a point robot, e.g. on an inflated costmap):
+  /// then nothing asks.
   const std::vector<std::uint8_t>& clearance() const { return clearance_; }
   /// The distinct sweep radii (cells, ascending) that bound the classes: a cell's class exceeds
   /// k exactly when its clearance exceeds clearanceRadii()[k] (e.g. for PathSmoother, which
@@ -209,7 +212,8 @@ class LatticeGraph {
   std::vector<std::int64_t> offsets_;
   std::vector<std::vector<CellOffset>> rest_cells_;  // footprint at rest, per heading
   std::vector<std::int64_t> penalty_q_;              // 256 entries: Q[c]
-  std::vector<std::uint8_t> clearance_;
+  std::vector<std::uint8_t> clearance_;  // empty unless some action sweeps a cell (any_swept_)
+  bool any_swept_ = false;
   std::vector<float> class_radii_;  // the distinct sweep radii, ascending (at most 255)
   float clearance_cap_ = 0.0f;
   CellRect recomputed_;
