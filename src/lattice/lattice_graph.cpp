@@ -275,8 +275,6 @@ void LatticeGraph::buildActions(const StopCondition* stop) {
   action_index_[n] = actions_.size();
   linkActionsInto();
   // Clearance only decides "clearance > sweep_radius": a cell keeps its class (clearance()).
-  any_swept_ = std::any_of(actions_.begin(), actions_.end(),
-                           [](const LatticeAction& a) { return a.swept_end != a.swept_begin; });
   std::vector<float> sweeps;
   for (const LatticeAction& a : actions_) sweeps.push_back(a.sweep_radius);
   class_radii_ = clearanceClassRadii(std::move(sweeps));
@@ -326,19 +324,10 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   const std::array<double, 2> radii = openingRadii();
   // A point robot sweeps no cell and opens nothing: no distance transform, no clearance (a byte
   // a cell: 4 MB on a 2000 x 2000 map).
-  if (!any_swept_ && (!openings || (radii[0] <= 0.0 && radii[1] <= 0.0))) {
-    clearance_.clear();
-    clearance_.shrink_to_fit();
-    if (openings) {
-      for (auto& o : opened_) {
-        o.clear();
-        o.shrink_to_fit();
-      }
-      openings_shared_ = radii[1] == radii[0];
-      openings_equal_ = true;
-    }
-    return;
-  }
+  const bool sweeps = std::any_of(actions_.begin(), actions_.end(), [](const LatticeAction& a) {
+    return a.swept_end != a.swept_begin;
+  });
+  const bool opens = openings && (radii[0] > 0.0 || radii[1] > 0.0);
   // Reading the map dependenceMargin() around `out` gives every cell of `out` exactly the value
   // a whole-map computation gives it. Cells near the crop's edge may get wrong values (they do
   // not see obstacles beyond it), but they are more than r from `out`, too far to matter.
@@ -348,22 +337,24 @@ void LatticeGraph::computeClearanceAndOpenings(const CellRect& out) {
   const int cx0 = std::max(out.x0 + 1 - margin, 0), cy0 = std::max(out.y0 + 1 - margin, 0);
   const int cx1 = std::min(out.x1 + 1 + margin, w + 2), cy1 = std::min(out.y1 + 1 + margin, h + 2);
   const int cw = cx1 - cx0, ch = cy1 - cy0;
-  cv::Mat free(ch, cw, CV_8U, cv::Scalar(0));
-  for (int py = std::max(cy0, 1); py < std::min(cy1, h + 1); ++py) {
-    const int y = py - 1;
-    const std::uint8_t* c = &map_->cost[static_cast<std::size_t>(y) * w];
-    std::uint8_t* row = free.ptr<std::uint8_t>(py - cy0);
-    for (int px = std::max(cx0, 1); px < std::min(cx1, w + 1); ++px) {
-      row[px - cx0] = c[px - 1] < kLethalCost ? 255 : 0;
+  cv::Mat dist;  // empty when neither the clearance nor an opening needs it
+  if (sweeps || opens) {
+    cv::Mat free(ch, cw, CV_8U, cv::Scalar(0));
+    for (int py = std::max(cy0, 1); py < std::min(cy1, h + 1); ++py) {
+      const int y = py - 1;
+      const std::uint8_t* c = &map_->cost[static_cast<std::size_t>(y) * w];
+      std::uint8_t* row = free.ptr<std::uint8_t>(py - cy0);
+      for (int px = std::max(cx0, 1); px < std::min(cx1, w + 1); ++px) {
+        row[px - cx0] = c[px - 1] < kLethalCost ? 255 : 0;
+      }
     }
+    cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   }
-  cv::Mat dist;
-  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  clearance_.resize(any_swept_ ? cells : 0);
+  if (sweeps) clearance_.resize(cells);
   const float* class_radii = class_radii_.data();
   const int num_radii = static_cast<int>(class_radii_.size());
   const float top = num_radii > 0 ? class_radii[num_radii - 1] : 0.0f;
-  for (int y = out.y0; any_swept_ && y < out.y1; ++y) {
+  for (int y = out.y0; sweeps && y < out.y1; ++y) {
     const float* d = dist.ptr<float>(y + 1 - cy0);  // d[x + 1 - cx0]: cell (x, y)
     std::uint8_t* c = clearance_.data() + static_cast<std::size_t>(y) * w;
     for (int x = out.x0; x < out.x1; ++x) {

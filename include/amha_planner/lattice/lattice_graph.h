@@ -212,8 +212,7 @@ class LatticeGraph {
   std::vector<std::int64_t> offsets_;
   std::vector<std::vector<CellOffset>> rest_cells_;  // footprint at rest, per heading
   std::vector<std::int64_t> penalty_q_;              // 256 entries: Q[c]
-  std::vector<std::uint8_t> clearance_;  // empty unless some action sweeps a cell (any_swept_)
-  bool any_swept_ = false;
+  std::vector<std::uint8_t> clearance_;              // empty unless some action sweeps a cell
   std::vector<float> class_radii_;  // the distinct sweep radii, ascending (at most 255)
   float clearance_cap_ = 0.0f;
   CellRect recomputed_;
