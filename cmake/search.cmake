@@ -3,6 +3,7 @@ add_library(amha_search
   src/search/planner_config.cpp
   src/search/stop_condition.cpp
   src/search/large_blocks.cpp
+  src/search/map_large_blocks_alone.cpp
   src/search/search_base.cpp
   src/search/dts_schedule.cpp
   src/search/mha_engine.cpp

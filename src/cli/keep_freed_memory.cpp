@@ -19,8 +19,8 @@ void keepFreedMemoryMapped(std::size_t max_pooled_bytes) {
 }
 
 bool unmapFreedLargeBlocks() {
-  constexpr int kThresholdBytes = 128 * 1024;  // glibc's own initial threshold
-  return mallopt(M_MMAP_THRESHOLD, kThresholdBytes) == 1;
+  constexpr std::size_t kThresholdBytes = 128 * 1024;  // glibc's own initial threshold
+  return mapLargeBlocksAlone(kThresholdBytes);
 }
 
 }  // namespace cli

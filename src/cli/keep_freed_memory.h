@@ -17,7 +17,7 @@ namespace cli {
 void keepFreedMemoryMapped(std::size_t max_pooled_bytes);
 
 /// The opposite, for a command that plans once: every block of 128 KiB or more is mapped on its
-/// own and unmapped when freed (mallopt M_MMAP_THRESHOLD at glibc's initial 128 KiB, held there).
+/// own and unmapped when freed (mapLargeBlocksAlone at glibc's initial threshold, held there).
 /// By default glibc raises that threshold to the size of each large block it frees (up to
 /// 32 MiB), so after the kinematic table's and the grids' temporaries are freed the planner's
 /// later arrays come from the arenas, where what is freed stays resident under the search's

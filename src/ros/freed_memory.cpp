@@ -7,10 +7,6 @@
 
 namespace amha_planner {
 
-bool mapLargeBlocksAlone(std::size_t bytes) {
-  return mallopt(M_MMAP_THRESHOLD, static_cast<int>(bytes)) == 1;
-}
-
 FreedMemory FreedMemoryReleaser::releaseIfMuchFreed() {
   std::lock_guard<std::mutex> lock(mutex_);
   FreedMemory out;

@@ -15,6 +15,7 @@
 #include "amha_planner/ros/conversions.h"
 #include "amha_planner/ros/reconfigure.h"
 #include "amha_planner/ros/response_conversion.h"
+#include "amha_planner/search/detail/memory_reuse.h"
 
 namespace amha_planner {
 
@@ -31,7 +32,7 @@ constexpr std::size_t kLargeBlockBytes = std::size_t{4} << 20;
 
 PlannerServer::PlannerServer(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     : nh_(nh), pnh_(pnh), startup_(loadPlannerParams(pnh)), params_(startup_) {
-  if (startup_.release_freed_memory && !mapLargeBlocksAlone(kLargeBlockBytes)) {
+  if (startup_.release_freed_memory && !amha::mapLargeBlocksAlone(kLargeBlockBytes)) {
     ROS_WARN(
         "amha_planner: could not set malloc's mmap threshold; replaced maps may stay resident");
   }

@@ -22,6 +22,7 @@
 
 #include "amha_planner/lattice/lattice_planner.h"
 #include "amha_planner/ros/freed_memory.h"
+#include "amha_planner/search/detail/memory_reuse.h"
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define AMHA_OWN_MALLOC 1
@@ -91,7 +92,7 @@ TEST(FreedMemory, GlibcsDefaultKeepsHugeMapsResidentWithoutALeak) {
 
 TEST(FreedMemory, LargeBlocksMappedAloneLeaveNothingResident) {
   if (AMHA_OWN_MALLOC) GTEST_SKIP() << "the sanitizers replace malloc";
-  ASSERT_TRUE(mapLargeBlocksAlone(std::size_t{4} << 20));  // the server's setting
+  ASSERT_TRUE(amha::mapLargeBlocksAlone(std::size_t{4} << 20));  // the server's setting
   const double kept = rssKeptByHugeMaps();
   std::cout << "[ memory   ] blocks >= 4 MiB mapped alone: " << kept
             << " MB more resident after three 4000 x 4000 maps" << std::endl;

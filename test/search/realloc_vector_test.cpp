@@ -192,6 +192,12 @@ TEST(ReallocVector, GrowsLargeBlocksWhenMallocMapsNothing) {
   mallopt(M_MMAP_MAX, 65536);  // glibc's default
 }
 
+TEST(MapLargeBlocksAlone, RefusesAThresholdMallocCannotHold) {
+  // mallopt takes an int: a larger threshold must be refused, not wrapped to a negative one.
+  EXPECT_FALSE(mapLargeBlocksAlone(std::size_t{1} << 31));
+  EXPECT_FALSE(mapLargeBlocksAlone(std::size_t{1} << 40));
+}
+
 }  // namespace
 }  // namespace detail
 }  // namespace amha

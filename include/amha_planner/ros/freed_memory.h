@@ -2,19 +2,16 @@
 // each large block it frees (up to 32 MiB): from then on the arrays of a map of millions of
 // cells are carved from the arenas, which keep what is freed for reuse, so tens of MB of a
 // replaced 4000 x 4000 map stay resident for good although the heap in use is back to its usual
-// size (docs/results/robustness.md, "Memory after huge maps"). ROS-free so that it can be tested.
+// size (docs/results/robustness.md, "Memory after huge maps"). The server therefore maps large
+// blocks alone (amha::mapLargeBlocksAlone, in the library's memory_reuse.h, shared with
+// `amha plan`) and, with the releaser here, trims what smaller blocks leave between live ones.
+// ROS-free so that it can be tested.
 #pragma once
 
 #include <cstddef>
 #include <mutex>
 
 namespace amha_planner {
-
-/// Makes glibc map every block of `bytes` or more on its own and unmap it when it is freed
-/// (mallopt M_MMAP_THRESHOLD, which also fixes the trim threshold at its default). Such blocks
-/// then never stay in an arena: malloc_trim cannot return the top of a thread's arena, only
-/// free() can. Process-wide; returns false if glibc refused.
-bool mapLargeBlocksAlone(std::size_t bytes);
 
 struct FreedMemory {
   std::size_t free_bytes = 0;  ///< free bytes the arenas held (mallinfo2's fordblks)

@@ -1,5 +1,6 @@
-// Process-wide choice for the search's large arrays (records, queue storage): return freed
-// ones to the kernel, or keep them for the next search in the process.
+// Process-wide choices for freed memory: the search's large arrays (records, queue storage)
+// returned to the kernel or kept for the next search in the process, and malloc's own large
+// blocks mapped alone (the server and `amha plan`).
 #pragma once
 
 #include <cstddef>
@@ -17,5 +18,13 @@ namespace amha {
 /// Off by default. Thread-safe; affects arrays freed after the call.
 void setReuseFreedSearchMemory(
     bool reuse, std::size_t max_pooled_bytes = std::numeric_limits<std::size_t>::max());
+
+/// Makes glibc map every block of `bytes` or more on its own and unmap it when it is freed
+/// (mallopt M_MMAP_THRESHOLD, held there; it also fixes the trim threshold at its default). By
+/// default glibc raises that threshold to the size of each large block it frees (up to 32 MiB),
+/// and later large arrays come from the arenas, where what is freed stays resident: a replaced
+/// map's tens of MB in a server, the kinematic table's and the grids' temporaries under a
+/// search's peak. Process-wide; returns false if glibc refused (or it is not glibc).
+bool mapLargeBlocksAlone(std::size_t bytes);
 
 }  // namespace amha
