@@ -55,6 +55,12 @@ int planMain(int argc, char** argv) {
                  "with --start-tolerance: an escape motion costs this times its cost across the "
                  "costliest free "
                  "cells (default 2, >= 1)");
+  bool complete_grids = false;
+  app.add_flag("--complete-grids", complete_grids,
+               "complete the heuristic grids over the whole map (the server's default); without "
+               "it they stop past the best path's cost once the search has one, which saves memory "
+               "and the second core's time but leaves later iterations' expansions (not the "
+               "costs) to the timing of the two threads");
   bool any_goal_heading = false;
   app.add_flag(
       "--any-goal-heading", any_goal_heading,
@@ -208,6 +214,8 @@ int planMain(int argc, char** argv) {
     }
     start = start_text.empty() ? loaded.env.start : parsePose(start_text, "--start");
     goal = goal_text.empty() ? loaded.env.goal : parsePose(goal_text, "--goal");
+    // One query: its grids need not reach past its path's cost for a later query to the goal.
+    loaded.config.cache.complete_grids = complete_grids;
     const auto t0 = std::chrono::steady_clock::now();
     planner.reset(new lattice::LatticePlanner(loaded.map, loaded.config, limits));
     setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -205,9 +205,9 @@ std::vector<std::uint32_t> CoarseLattice::repairDistances(std::vector<std::uint3
   };
   auto propagateFrom = [&](detail::RadixHeap& heap) { return propagate(edges, old, heap, stop); };
   detail::RadixHeap heap;
-  if (!detail::repairDistances(dist, goal, goal_count, block_cost_[goal / headings_] != 255,
-                               forNear, holds, along(edges), along(into), propagateFrom, stop,
-                               heap)) {
+  if (!detail::repairDistances(detail::PlainCells{dist}, goal, goal_count,
+                               block_cost_[goal / headings_] != 255, forNear, holds, along(edges),
+                               along(into), propagateFrom, stop, heap)) {
     return {};
   }
   if (std::find(old.begin(), old.end(), kUnreachable - 1) != old.end())

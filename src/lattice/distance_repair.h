@@ -26,7 +26,21 @@ namespace amha {
 namespace lattice {
 namespace detail {
 
-/// dist holds the old distances, and receives the new ones (in place). forNear(f) calls f(node)
+/// Distances held as they are (the block abstraction's).
+struct PlainCells {
+  std::uint32_t* dist;
+  std::uint32_t get(std::uint32_t v) const { return dist[v]; }
+  void set(std::uint32_t v, std::uint32_t d) const { dist[v] = d; }
+};
+/// Distances held encoded (a heuristic grid's cells, encodeDistance).
+struct EncodedCells {
+  std::uint32_t* stored;
+  std::uint32_t get(std::uint32_t v) const { return decodeDistance(stored[v]); }
+  void set(std::uint32_t v, std::uint32_t d) const { stored[v] = encodeDistance(d); }
+};
+
+/// `cells` (PlainCells, EncodedCells) holds the old distances, and receives the new ones (in
+/// place). forNear(f) calls f(node)
 /// for every node near the change; holds(node) is the raise test above (false for a node that
 /// is now impassable; true for a goal node if it is passable); forSuccessors(node, f) and
 /// forPredecessors(node, f) call f(other) along the relaxation's edges, out of and into node;
@@ -35,43 +49,48 @@ namespace detail {
 /// goal_open: they are passable (sources again if they were not).
 /// Returns false if `stop` asked to stop (dist is then incomplete); `lower` receives the last
 /// key the second wave popped.
-template <class ForNear, class Holds, class ForSuccessors, class ForPredecessors, class Propagate>
-bool repairDistances(std::uint32_t* dist, std::uint32_t goal, std::uint32_t goal_count,
-                     bool goal_open, ForNear&& forNear, Holds&& holds,
-                     ForSuccessors&& forSuccessors, ForPredecessors&& forPredecessors,
-                     Propagate&& propagate, const StopCondition* stop, RadixHeap& lower) {
+template <class Cells, class ForNear, class Holds, class ForSuccessors, class ForPredecessors,
+          class Propagate>
+bool repairDistances(Cells cells, std::uint32_t goal, std::uint32_t goal_count, bool goal_open,
+                     ForNear&& forNear, Holds&& holds, ForSuccessors&& forSuccessors,
+                     ForPredecessors&& forPredecessors, Propagate&& propagate,
+                     const StopCondition* stop, RadixHeap& lower) {
   std::vector<std::uint32_t> failed;
   {
     RadixHeap raise;
     forNear([&](std::uint32_t v) {
-      if (dist[v] != kUnreachable) raise.push(dist[v], v);
+      const std::uint32_t d = cells.get(v);
+      if (d != kUnreachable) raise.push(d, v);
     });
     for (std::uint32_t pops = 0; !raise.empty();) {
       // Not a structured binding: clang before 16 cannot capture one in the lambda below.
       const std::pair<std::uint32_t, std::uint32_t> top = raise.pop();
       const std::uint32_t d = top.first, v = top.second;
-      if (d != dist[v]) continue;  // failed already
+      if (d != cells.get(v)) continue;  // failed already
       if ((++pops & 1023) == 0 && stop != nullptr && stop->requested()) return false;
       if (holds(v)) continue;
-      dist[v] = kUnreachable;
+      cells.set(v, kUnreachable);
       failed.push_back(v);
       forSuccessors(v, [&](std::uint32_t t) {
-        if (dist[t] != kUnreachable && dist[t] > d) raise.push(dist[t], t);
+        const std::uint32_t dt = cells.get(t);
+        if (dt != kUnreachable && dt > d) raise.push(dt, t);
       });
     }
   }
   for (std::uint32_t v = goal; goal_open && v < goal + goal_count; ++v) {
-    if (dist[v] != 0) {
-      dist[v] = 0;
+    if (cells.get(v) != 0) {
+      cells.set(v, 0);
       lower.push(0, v);
     }
   }
   forNear([&](std::uint32_t v) {
-    if (dist[v] != kUnreachable) lower.push(dist[v], v);
+    const std::uint32_t d = cells.get(v);
+    if (d != kUnreachable) lower.push(d, v);
   });
   for (const std::uint32_t v : failed) {
     forPredecessors(v, [&](std::uint32_t u) {
-      if (dist[u] != kUnreachable) lower.push(dist[u], u);
+      const std::uint32_t d = cells.get(u);
+      if (d != kUnreachable) lower.push(d, u);
     });
   }
   return propagate(lower);

@@ -21,9 +21,10 @@ namespace lattice {
 namespace {
 
 // Distances are stored atomically: a search may read a grid that a background thread still
-// completes (GridProgress). Relaxed: the order comes from GridProgress::final_bits.
+// completes (GridProgress). Relaxed: the order comes from GridProgress::final_bits. Encoded
+// (encodeDistance): `dist` below always points to a grid's stored cells.
 inline void storeDistance(std::uint32_t* dist, std::size_t i, std::uint32_t v) {
-  __atomic_store_n(dist + i, v, __ATOMIC_RELAXED);
+  __atomic_store_n(dist + i, encodeDistance(v), __ATOMIC_RELAXED);
 }
 
 /// Spins, then yields: the helper works on another core and a search waits for it a few
@@ -41,11 +42,11 @@ void pause(unsigned& spins) {
 
 }  // namespace
 
-std::uint32_t GridProgress::read(const std::uint32_t* dist, std::size_t i) const {
+std::uint32_t GridProgress::read(const std::uint32_t* stored, std::size_t i) const {
   for (unsigned spins = 0;;) {
     // Complete: a cell without its bit was never reached (kUnreachable).
     if (isFinal(i) || complete.load(std::memory_order_acquire))
-      return __atomic_load_n(dist + i, __ATOMIC_RELAXED);
+      return decodeDistance(__atomic_load_n(stored + i, __ATOMIC_RELAXED));
     if (abandoned.load(std::memory_order_acquire)) {
       const std::uint32_t f = frontier.load(std::memory_order_relaxed), e = direction.atIndex(i);
       return f > e ? f - e : 0;
@@ -100,14 +101,45 @@ void HeuristicGridBuilder::reapBackground(bool all) const {
   }
 }
 
+std::vector<std::uint32_t> DistanceGrid::distances() const {
+  std::vector<std::uint32_t> out(stored.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = decodeDistance(stored[i]);
+  return out;
+}
+
 std::size_t GoalHeuristics::bytes() const {
   std::size_t b = sizeof(*this) + coarse.capacity() * sizeof(std::uint32_t);
   for (int k = 0; k < kNumGridKinds; ++k) {
     bool shared = false;
     for (int j = 0; j < k; ++j) shared = shared || grids[j] == grids[k];
-    if (grids[k] && !shared) b += grids[k]->dist.capacity() * sizeof(std::uint32_t);
+    if (grids[k] && !shared) b += grids[k]->stored.size() * sizeof(std::uint32_t);
   }
   return b;
+}
+
+void GoalHeuristics::stopBeyond(std::uint64_t path_cost) const {
+  // One key per grid object (kinds may share one at different scales): the largest of its
+  // kinds', so that each kind's cells below the path's cost stay exact.
+  for (int k = 0; k < kNumGridKinds; ++k) {
+    if (!grids[k] || !grids[k]->progress) continue;
+    double units = 0.0;
+    for (int j = 0; j < kNumGridKinds; ++j) {
+      if (grids[j] == grids[k] && scale[j] > 0.0)
+        units = std::max(units, static_cast<double>(path_cost) * kGridFraction / scale[j]);
+    }
+    const std::uint32_t key = units >= static_cast<double>(kUnreachable)
+                                  ? kUnreachable
+                                  : static_cast<std::uint32_t>(std::ceil(units));
+    std::atomic<std::uint32_t>& stop = grids[k]->progress->stop_key;
+    for (std::uint32_t cur = stop.load(std::memory_order_relaxed);
+         key < cur && !stop.compare_exchange_weak(cur, key, std::memory_order_relaxed);) {
+    }
+  }
+}
+
+bool GoalHeuristics::anyAbandoned() const {
+  return std::any_of(std::begin(grids), std::end(grids),
+                     [](const auto& g) { return g && g->abandoned(); });
 }
 
 HeuristicGridBuilder::HeuristicGridBuilder(const LatticeGraph& graph)
@@ -276,7 +308,7 @@ inline bool settles(std::uint8_t* bits, const std::uint32_t* dist, std::uint32_t
     markFinal(bits, i);
     return true;
   } else {
-    return key == dist[i];
+    return key == decodeDistance(dist[i]);
   }
 }
 
@@ -312,8 +344,14 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
   };
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [key, i] = queue.pop();
+    if constexpr (kTracked) {
+      if (key >= progress->stop_key.load(std::memory_order_relaxed)) {
+        progress->stopped_at_key = true;  // the rest is not needed (GoalHeuristics::stopBeyond)
+        return done(true);
+      }
+    }
     if (!settles<kTracked>(bits, dist, key, i)) continue;
-    const std::uint32_t d = dist[i];
+    const std::uint32_t d = decodeDistance(dist[i]);
     top_g = std::max(top_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return done(false);
     for (std::size_t m = 0; m < nm; ++m) {
@@ -324,7 +362,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
       // 1 is still a reachable cell.
       const std::uint32_t v = static_cast<std::uint32_t>(
           std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + w, kUnreachable - 1));
-      if (v < dist[j]) {
+      if (v < decodeDistance(dist[j])) {
         storeDistance(dist, j, v);
         queue.push(kTracked ? v + progress->direction.atIndex(j) : v,
                    static_cast<std::uint32_t>(j));
@@ -381,8 +419,14 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       __builtin_prefetch(level + a + pw);
       if constexpr (kTracked) __builtin_prefetch(bits + (a >> 3));
     }
+    if constexpr (kTracked) {
+      if (key >= progress->stop_key.load(std::memory_order_relaxed)) {
+        progress->stopped_at_key = true;  // the rest is not needed (GoalHeuristics::stopBeyond)
+        return done(true);
+      }
+    }
     if (!settles<kTracked>(bits, dist, key, i)) continue;
-    const std::uint32_t d = dist[i];
+    const std::uint32_t d = decodeDistance(dist[i]);
     top_g = std::max(top_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return done(false);
     // The popped cell's padded coordinates, for the keys toward the search's start.
@@ -397,7 +441,7 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       // Saturating: min(distance, kUnreachable - 1) is still admissible and consistent.
       const std::uint32_t nd = static_cast<std::uint32_t>(
           std::min<std::uint64_t>(static_cast<std::uint64_t>(d) + s[c], kUnreachable - 1));
-      if (nd < dist[j]) {
+      if (nd < decodeDistance(dist[j])) {
         storeDistance(dist, j, nd);
         queue.push(directed ? nd + toward.at(ix + dx, iy + dy) : nd, static_cast<std::uint32_t>(j));
       }
@@ -469,13 +513,14 @@ bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, Di
   grid.width = width_;
   grid.height = height_;
   grid.max_distance = 0;
-  if (!fill(grid.dist, total, kUnreachable, nullptr, stop)) return false;
-  std::uint32_t* dist = grid.dist.data();
+  // Every cell kUnreachable: fresh zero pages (encodeDistance), touched only where reached.
+  grid.stored.reset(total);
+  std::uint32_t* dist = grid.stored.data();
   const std::uint32_t goal = static_cast<std::uint32_t>(paddedIndex(width_, gx, gy));
   const bool passable = kind.level[goal] != 255;
-  if (passable) dist[goal] = 0;
+  if (passable) storeDistance(dist, goal, 0);
   if (progress != nullptr) {
-    progress->final_bits.assign(total / 8 + 1, 0);
+    progress->final_bits.reset(total / 8 + 1);
     progress->filled.store(true, std::memory_order_release);
   }
   if (!passable) return true;
@@ -486,7 +531,8 @@ bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, Di
     if (progress != nullptr) {
       queue.push(progress->direction.atIndex(goal), goal);
       complete = propagate<true>(kind, dist, queue, stop, progress, &max_g);
-      if (!complete) progress->frontier.store(queue.lastPopped(), std::memory_order_relaxed);
+      if (!complete || progress->stopped_at_key)
+        progress->frontier.store(queue.lastPopped(), std::memory_order_relaxed);
     } else {
       queue.push(0, goal);
       complete = propagate<false>(kind, dist, queue, stop, nullptr, &max_g);
@@ -511,7 +557,8 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
                                const StopCondition* stop, GridProgress* progress) const {
   const bool complete = dijkstraFromGoal(kind, gx, gy, grid, stop, progress);
   if (progress != nullptr) {
-    if (complete) {
+    // Stopped at its key, it is done as far as anyone needs: not a stopped computation.
+    if (complete && !progress->stopped_at_key) {
       progress->complete.store(true, std::memory_order_release);
     } else {
       progress->abandoned.store(true, std::memory_order_release);
@@ -520,22 +567,17 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   return complete;
 }
 
-bool HeuristicGridBuilder::fill(std::vector<std::uint32_t>& grid, std::size_t count,
-                                std::uint32_t value, const std::vector<std::uint32_t>* source,
+bool HeuristicGridBuilder::copy(ZeroedArray<std::uint32_t>& grid,
+                                const ZeroedArray<std::uint32_t>& source,
                                 const StopCondition* stop) const {
-  // Allocated untouched and filled in slices: first touching a big grid's pages takes tens of
-  // milliseconds (64 MB on 4000 x 4000 cells), and a stop must be seen within a few.
-  grid.clear();
-  grid.reserve(count);
+  // Copied in slices: first touching a big grid's pages takes tens of milliseconds (64 MB on
+  // 4000 x 4000 cells), and a stop must be seen within a few.
+  grid.reset(source.size());
   constexpr std::size_t kSlice = std::size_t{1} << 20;
-  for (std::size_t filled = 0; filled < count; filled += kSlice) {
+  for (std::size_t done = 0; done < source.size(); done += kSlice) {
     if (stop != nullptr && stop->requested()) return false;
-    const std::size_t n = std::min(kSlice, count - filled);
-    if (source != nullptr) {
-      grid.insert(grid.end(), source->begin() + filled, source->begin() + filled + n);
-    } else {
-      grid.insert(grid.end(), n, value);
-    }
+    const std::size_t n = std::min(kSlice, source.size() - done);
+    std::copy(source.data() + done, source.data() + done + n, grid.data() + done);
   }
   return true;
 }
@@ -580,15 +622,15 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   // would let two cells hold each other up: such grids are computed in full (neither happens on
   // real maps: saturation takes a path of millions of cells).
   constexpr std::uint32_t kSaturated = kUnreachable - 1;
-  if (old.dist.size() != total || kind.min_step == 0 || old.max_distance >= kSaturated) {
+  if (old.stored.size() != total || kind.min_step == 0 || old.max_distance >= kSaturated) {
     return run(kind, gx, gy, grid, stop);
   }
   if (&grid != &old) {
     grid.width = width_;
     grid.height = height_;
-    if (!fill(grid.dist, total, 0, &old.dist, stop)) return false;
+    if (!copy(grid.stored, old.stored, stop)) return false;
   }
-  std::uint32_t* dist = grid.dist.data();
+  std::uint32_t* dist = grid.stored.data();
   const std::uint8_t* level = kind.level.data();
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
@@ -613,9 +655,11 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
     if (c == goal) return true;
     for (std::size_t m = 0; m < nm; ++m) {
       const std::uint32_t i = static_cast<std::uint32_t>(c - off[m]);
-      if (dist[i] == kUnreachable) continue;
+      const std::uint32_t di = decodeDistance(dist[i]);
+      if (di == kUnreachable) continue;
       const std::uint32_t w = moveCost(kind, i, m);
-      if (w != kUnreachable && static_cast<std::uint64_t>(dist[i]) + w == dist[c]) return true;
+      if (w != kUnreachable && static_cast<std::uint64_t>(di) + w == decodeDistance(dist[c]))
+        return true;
     }
     return false;
   };
@@ -626,8 +670,8 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   };
   detail::RadixHeap queue;
   auto resume = [&](detail::RadixHeap& q) { return propagate<false>(kind, dist, q, stop); };
-  if (!detail::repairDistances(dist, goal, 1, level[goal] != 255, forNear, holds, along(+1),
-                               along(-1), resume, stop, queue)) {
+  if (!detail::repairDistances(detail::EncodedCells{dist}, goal, 1, level[goal] != 255, forNear,
+                               holds, along(+1), along(-1), resume, stop, queue)) {
     return false;
   }
   // The cells it did not pop keep old distances; a bound is enough (a saturated distance would

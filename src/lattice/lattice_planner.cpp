@@ -126,6 +126,7 @@ struct LatticePlanner::Impl {
           if (it->key == key) {
             cache.splice(cache.begin(), cache, it);
             future = it->grids;
+            serial = it->serial;
             break;
           }
         }
@@ -159,7 +160,12 @@ struct LatticePlanner::Impl {
           }
           *seconds = since();
         }
-        if (auto grids = future.get()) return grids;
+        if (auto grids = future.get()) {
+          // Stopped early for another search (GoalHeuristics::stopBeyond), its grids read as
+          // weak bounds away from that search's start: computed again for this one.
+          if (!grids->anyAbandoned()) return grids;
+          forget();
+        }
         continue;  // that call was stopped: compute them here
       }
       try {
@@ -746,6 +752,9 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
     }
     if (bidir && sol.cost >= 0)
       bidir->bound.store(std::min(bidir->bound.load(), static_cast<std::uint64_t>(sol.cost)));
+    // Grids nobody will reuse need not go beyond the best path's cost.
+    if (!g.config().cache.complete_grids && sol.cost >= 0)
+      grids->stopBeyond(static_cast<std::uint64_t>(sol.cost));
     result.solutions.push_back(std::move(ls));
     if (on_solution) on_solution(result.solutions.back());
   };

@@ -220,6 +220,7 @@ std::vector<ParamSpec> makeSpecs() {
       plain("backward_search", AMHA_FIELD(lattice.backward_search)),
       plain("heuristic_cache_size", AMHA_FIELD(lattice.cache.size), 1, 64),
       plain("repair_heuristics", AMHA_FIELD(lattice.cache.repair)),
+      plain("complete_heuristic_grids", AMHA_FIELD(lattice.cache.complete_grids)),
       weight("w1", AMHA_FIELD(w1), 1.0),
       weight("w2", AMHA_FIELD(w2), 1.0),
       choice("weight_schedule", AMHA_FIELD(weight_schedule), amha::parseWeightSchedule,

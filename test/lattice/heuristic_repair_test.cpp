@@ -39,7 +39,9 @@ void expectSame(const GoalHeuristics& repaired, const GoalHeuristics& full, int 
   for (int k = 0; k < kNumGridKinds; ++k) {
     ASSERT_EQ(repaired.grids[k] == nullptr, full.grids[k] == nullptr) << what << ": grid " << k;
     if (full.grids[k]) {
-      EXPECT_EQ(firstDifference(repaired.grids[k]->dist, full.grids[k]->dist, width + 4), "")
+      EXPECT_EQ(
+          firstDifference(repaired.grids[k]->distances(), full.grids[k]->distances(), width + 4),
+          "")
           << what << ": grid " << k;
     }
     EXPECT_EQ(repaired.scale[k], full.scale[k]) << what << ": grid " << k;

@@ -47,7 +47,9 @@ void expectSameHeuristics(const HeuristicGridBuilder& updated, const HeuristicGr
   for (int k = 0; k < kNumGridKinds; ++k) {
     ASSERT_EQ(a->grids[k] == nullptr, b->grids[k] == nullptr) << what << ": grid " << k;
     if (a->grids[k]) {
-      EXPECT_EQ(firstDifference(a->grids[k]->dist, b->grids[k]->dist, graph.width() + 4), "")
+      EXPECT_EQ(
+          firstDifference(a->grids[k]->distances(), b->grids[k]->distances(), graph.width() + 4),
+          "")
           << what << ": grid " << k << " for goal (" << gx << ", " << gy << ")";
     }
     EXPECT_EQ(a->scale[k], b->scale[k]) << what << ": grid " << k;

@@ -157,6 +157,13 @@ struct LatticeConfig {
     /// and repairs them on the first query to their goal (HeuristicGridBuilder::repair: exact,
     /// and far quicker than computing them again unless the change reroutes most of the map).
     bool repair = true;
+    /// Whether a query's grids are completed over the whole map once its search has a path, so
+    /// that the next query to the same goal reuses them from any start (a robot replanning
+    /// toward its goal). Off: the thread completing them stops once their keys pass the best
+    /// path's cost (GoalHeuristics::stopBeyond), which the search's proof never reads beyond:
+    /// the cells past it cost no memory and no time on the second core, and the next query to
+    /// that goal computes its grids again. `amha plan`, which plans once, turns it off.
+    bool complete_grids = true;
   };
 
   Robot robot;

@@ -9,6 +9,8 @@
 // the search begins, compute() returns once that cell's distance is final and leaves the rest of
 // each grid to a background thread (GridProgress), which computes it as an A* toward that cell
 // (GridDirection): the search starts after a fraction of the map, while the grid is completed.
+// A planner that will not reuse the grids lets that thread stop once the search has a path and
+// the keys pass its cost (GoalHeuristics::stopBeyond): the cells beyond are never needed.
 #pragma once
 
 #include <atomic>
@@ -24,6 +26,7 @@
 #include "amha_planner/lattice/detail/coarse_lattice.h"
 #include "amha_planner/lattice/detail/footprint.h"
 #include "amha_planner/lattice/detail/grid_moves.h"
+#include "amha_planner/lattice/detail/zeroed_array.h"
 #include "amha_planner/search/stop_condition.h"
 #include "amha_planner/search/types.h"
 
@@ -72,18 +75,29 @@ struct GridDirection {
   }
 };
 
+/// A grid's cells store their distances inverted (~distance): kUnreachable is 0, so a grid begins
+/// as fresh zero pages (ZeroedArray) and a page costs memory only once the Dijkstra reaches it. A
+/// grid stopped early (GoalHeuristics::stopBeyond) then holds only the pages its search needed.
+inline std::uint32_t encodeDistance(std::uint32_t d) { return ~d; }
+inline std::uint32_t decodeDistance(std::uint32_t stored) { return ~stored; }
+
 /// Which cells of a grid that a background thread still completes are final: one bit per padded
 /// cell, set (release) when the cell is popped; its distance, stored before, never changes after.
 /// A reader loads the bit (acquire), then the cell.
 struct GridProgress {
   std::atomic<bool> filled{false};    ///< the cells and bits exist (release: readers may look)
   std::atomic<bool> complete{false};  ///< every cell is final (unreachable ones never get a bit)
-  /// Stopped before completion (the builder was destroyed first): read() returns a lower bound
-  /// for the cells that are not final.
+  /// Stopped before completion (the builder was destroyed first, or the keys reached stop_key):
+  /// read() returns a lower bound for the cells that are not final.
   std::atomic<bool> abandoned{false};
+  /// The thread computing the grid stops (abandons it) once a key popped reaches this: cells
+  /// beyond it are not needed (GoalHeuristics::stopBeyond). kUnreachable: never.
+  std::atomic<std::uint32_t> stop_key{kUnreachable};
+  /// Whether the keys reached stop_key (written by the computing thread before `abandoned`).
+  bool stopped_at_key = false;
   /// The last key popped, stored before `abandoned`: a cell not popped then has g + e >= it.
   std::atomic<std::uint32_t> frontier{0};
-  std::vector<std::uint8_t> final_bits;  ///< written before `filled`, then bit by bit
+  ZeroedArray<std::uint8_t> final_bits;  ///< made before `filled`, then set bit by bit
   GridDirection direction;               ///< set before `filled`
 
   /// Whether cell i's distance is final; needs `filled`.
@@ -94,7 +108,8 @@ struct GridProgress {
   /// Abandoned, a cell that is not final reads as max(0, frontier - e(cell)): every such cell
   /// has distance >= that, and, e being consistent both ways, frontier - e is consistent, so the
   /// grid stays a consistent lower bound (min(distance, frontier - e), then max with 0).
-  std::uint32_t read(const std::uint32_t* dist, std::size_t i) const;
+  /// `stored`: the grid's cells (encoded, DistanceGrid::stored).
+  std::uint32_t read(const std::uint32_t* stored, std::size_t i) const;
   /// Waits until the grid is complete; false if it was abandoned.
   bool waitComplete() const;
 };
@@ -108,7 +123,8 @@ inline std::size_t paddedIndex(int width, int x, int y) {
 /// One Dijkstra grid, stored with a 2-cell blocked border (padded width width + 4).
 struct DistanceGrid {
   int width = 0, height = 0;
-  std::vector<std::uint32_t> dist;
+  /// The padded cells' distances, encoded (encodeDistance); read them with at().
+  ZeroedArray<std::uint32_t> stored;
   /// No finite distance exceeds this (the largest one after a full computation; kUnreachable - 1
   /// if a distance saturated).
   std::uint32_t max_distance = 0;
@@ -117,16 +133,26 @@ struct DistanceGrid {
   std::shared_ptr<GridProgress> progress;
   std::uint32_t at(int x, int y) const {
     const std::size_t i = paddedIndex(width, x, y);
-    if (!progress) return dist[i];
+    if (!progress) return decodeDistance(stored[i]);
     // Inline while the cell is final (GridProgress); out of line only to wait.
-    if (progress->isFinal(i)) return __atomic_load_n(dist.data() + i, __ATOMIC_RELAXED);
-    return progress->read(dist.data(), i);
+    if (progress->isFinal(i))
+      return decodeDistance(__atomic_load_n(stored.data() + i, __ATOMIC_RELAXED));
+    return progress->read(stored.data(), i);
   }
   /// Whether every cell is final (then read them with atComplete()): no progress, or its
   /// Dijkstra has ended (an acquire, so that the plain reads after it see the distances).
   bool complete() const { return !progress || progress->complete.load(std::memory_order_acquire); }
   /// A cell of a grid that complete() said is complete, without at()'s check.
-  std::uint32_t atComplete(int x, int y) const { return dist[paddedIndex(width, x, y)]; }
+  std::uint32_t atComplete(int x, int y) const {
+    return decodeDistance(stored[paddedIndex(width, x, y)]);
+  }
+  /// Whether it was stopped before completion (GridProgress::abandoned): cells not final read as
+  /// a lower bound measured toward the search it was computed for, so it is not reused.
+  bool abandoned() const {
+    return progress && progress->abandoned.load(std::memory_order_acquire) && !complete();
+  }
+  /// Every padded cell's distance as stored (decoded), for comparisons in tests.
+  std::vector<std::uint32_t> distances() const;
 };
 
 /// Which grid; the anchor grid exists only with LatticeConfig::Heuristics::grid_anchor.
@@ -149,6 +175,17 @@ struct GoalHeuristics {
   const CoarseLattice* coarse_lattice = nullptr;
   double seconds = 0.0;  ///< wall time to compute them
   std::size_t bytes() const;
+  /// Lets the threads still completing these grids stop once their keys (distance + e, in grid
+  /// units) reach `path_cost` in cost units (for a grid scaled by s, path_cost / s): the search
+  /// has a path of that cost, and a cell not final then reads as frontier - e (GridProgress::
+  /// read), for which a state there has g + h >= path_cost whenever its g is at least e's
+  /// length (e is a walk of the grid's cheapest steps to the search's first cell): the proof,
+  /// which expands the states of f < its best path's cost, needs none of them. The result is
+  /// consistent and admissible either way (read()); only reuse for another start suffers (the
+  /// grids are then abandoned(): the planner's cache computes them again). Lowering only.
+  void stopBeyond(std::uint64_t path_cost) const;
+  /// Whether a grid was stopped before completion (DistanceGrid::abandoned).
+  bool anyAbandoned() const;
 };
 
 /// Per-map data the grids need (levels with blocked cells, step-cost tables), built once.
@@ -250,9 +287,9 @@ class HeuristicGridBuilder {
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
                   const std::vector<CellRect>& changed, DistanceGrid& grid,
                   const StopCondition* stop) const;  // grid may be old
-  /// Fills `grid` with `count` copies of `value`, or with `source`, in slices that check `stop`.
-  bool fill(std::vector<std::uint32_t>& grid, std::size_t count, std::uint32_t value,
-            const std::vector<std::uint32_t>* source, const StopCondition* stop) const;
+  /// Makes `grid` a copy of `source`, in slices that check `stop`.
+  bool copy(ZeroedArray<std::uint32_t>& grid, const ZeroedArray<std::uint32_t>& source,
+            const StopCondition* stop) const;
   /// Whether a distance on this map could reach the saturation value kUnreachable - 1.
   bool canSaturate(const Kind& kind) const;
   /// The cost of move m from padded cell i (dijkstra()'s relaxation), kUnreachable if blocked.
