@@ -95,6 +95,9 @@ struct GridProgress {
   std::atomic<std::uint32_t> stop_key{kUnreachable};
   /// Whether the keys reached stop_key (written by the computing thread before `abandoned`).
   bool stopped_at_key = false;
+  /// The computing thread's own: the padded cells [written_lo, written_hi) whose pages it has
+  /// written ahead of the Dijkstra (heuristic_grids.cpp, coverWritten), and the grid's size.
+  std::size_t written_lo = 0, written_hi = 0, cells = 0;
   /// The last key popped, stored before `abandoned`: a cell not popped then has g + e >= it.
   std::atomic<std::uint32_t> frontier{0};
   ZeroedArray<std::uint8_t> final_bits;  ///< made before `filled`, then set bit by bit
@@ -287,6 +290,9 @@ class HeuristicGridBuilder {
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
                   const std::vector<CellRect>& changed, DistanceGrid& grid,
                   const StopCondition* stop) const;  // grid may be old
+  /// Writes `count` zeros (kUnreachable, encoded), in slices that check `stop`: a grid computed
+  /// in full is quicker with its pages written in order first.
+  bool zeroInSlices(std::uint32_t* cells, std::size_t count, const StopCondition* stop) const;
   /// Makes `grid` a copy of `source`, in slices that check `stop`.
   bool copy(ZeroedArray<std::uint32_t>& grid, const ZeroedArray<std::uint32_t>& source,
             const StopCondition* stop) const;
