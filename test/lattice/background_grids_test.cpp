@@ -42,6 +42,16 @@ LatticeConfig roundRobot() {
   return c;
 }
 
+// A point robot with the anchor's grid alone: one grid, for the one helper thread.
+LatticeConfig anchorGridOnly() {
+  LatticeConfig c;
+  c.robot.radius = 0.0;
+  c.heuristics.coarse_anchor = false;
+  c.heuristics.num_inadmissible = 0;
+  c.heuristics.kinematic_radius = 0.0;
+  return c;
+}
+
 // The padded cells of a grid, farthest from the goal first: read first, they are the likeliest
 // to be unsettled when compute() returns.
 std::vector<std::pair<int, int>> farthestFirst(const DistanceGrid& full) {
@@ -119,16 +129,7 @@ TEST(BackgroundThreadGrids, EveryCellReadsAsTheCompleteGrid) {
 // grid is complete; destroying the builder then stops the background thread, and what was not
 // settled reads as a lower bound instead of waiting forever.
 TEST(BackgroundThreadGrids, ReturnsOnceTheStartIsFinalAndStopsWithTheBuilder) {
-  auto map = std::make_shared<GridMap>();
-  map->width = map->height = 3000;
-  map->resolution = 0.05;
-  map->cost.assign(static_cast<std::size_t>(map->width) * map->height, 0);
-  LatticeConfig c;
-  c.robot.radius = 0.0;
-  c.heuristics.coarse_anchor = false;
-  c.heuristics.num_inadmissible = 0;
-  c.heuristics.kinematic_radius = 0.0;
-  LatticeGraph g(map, c);
+  LatticeGraph g(test::freeMap(3000, 3000, 0.05), anchorGridOnly());
   const std::pair<int, int> goal{1500, 1500}, start{1501, 1500};
   auto b = std::make_unique<HeuristicGridBuilder>(g);
   const auto early = b->compute(goal.first, goal.second, 0, false, 2, false, nullptr, &start);
@@ -217,17 +218,9 @@ double residentFraction(const void* data, std::size_t bytes) {
 // complete but abandoned (so a planner's cache computes it again), and its untouched cells are
 // pages never written.
 TEST(BoundedGrids, AGridStoppedPastAPathsCostIsExactBelowItAndALowerBoundBeyond) {
-  auto map = std::make_shared<GridMap>();
-  map->width = map->height = 2000;
-  map->resolution = 0.05;
-  map->cost.assign(static_cast<std::size_t>(map->width) * map->height, 0);
+  auto map = test::freeMap(2000, 2000, 0.05);
   for (int y = 900; y < 1100; ++y) map->cost[static_cast<std::size_t>(y) * 2000 + 980] = 254;
-  LatticeConfig c;
-  c.robot.radius = 0.0;
-  c.heuristics.coarse_anchor = false;
-  c.heuristics.num_inadmissible = 0;
-  c.heuristics.kinematic_radius = 0.0;
-  LatticeGraph g(map, c);
+  LatticeGraph g(map, anchorGridOnly());
   const std::pair<int, int> goal{1000, 1000}, start{960, 1000};  // behind the wall
   HeuristicGridBuilder b(g);
   const auto early = b.compute(goal.first, goal.second, 0, false, 2, false, nullptr, &start);

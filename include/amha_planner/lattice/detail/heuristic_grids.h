@@ -140,6 +140,13 @@ struct DistanceGrid {
     // Inline while the cell is final (GridProgress); out of line only to wait.
     if (progress->isFinal(i))
       return decodeDistance(__atomic_load_n(stored.data() + i, __ATOMIC_RELAXED));
+    // Stopped (GridProgress::read's bound), inline: a stopped grid is read so for the whole
+    // proof, and the search knows (x, y), which atIndex() would divide out of i.
+    if (progress->abandoned.load(std::memory_order_acquire)) {
+      const std::uint32_t f = progress->frontier.load(std::memory_order_relaxed);
+      const std::uint32_t e = progress->direction.at(x + 2, y + 2);
+      return f > e ? f - e : 0;
+    }
     return progress->read(stored.data(), i);
   }
   /// Whether every cell is final (then read them with atComplete()): no progress, or its
