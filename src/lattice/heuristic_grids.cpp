@@ -48,10 +48,7 @@ std::uint32_t GridProgress::read(const std::uint32_t* stored, std::size_t i) con
     // Complete: a cell without its bit was never reached (kUnreachable).
     if (isFinal(i) || complete.load(std::memory_order_acquire))
       return decodeDistance(__atomic_load_n(stored + i, __ATOMIC_RELAXED));
-    if (abandoned.load(std::memory_order_acquire)) {
-      const std::uint32_t f = frontier.load(std::memory_order_relaxed), e = direction.atIndex(i);
-      return f > e ? f - e : 0;
-    }
+    if (abandoned.load(std::memory_order_acquire)) return boundBeyond(direction.atIndex(i));
     pause(spins);
   }
 }
@@ -317,6 +314,14 @@ inline void coverWritten(GridProgress& p, std::uint32_t* dist, std::size_t i, st
   }
 }
 
+/// Whether popping `key` ends a tracked grid at its stop key (GoalHeuristics::stopBeyond): the
+/// cells left are not needed; then it records so (stopped_at_key).
+inline bool reachedStopKey(GridProgress& p, std::uint32_t key) {
+  if (key < p.stop_key.load(std::memory_order_relaxed)) return false;
+  p.stopped_at_key = true;
+  return true;
+}
+
 /// Sets cell i's bit in GridProgress::final_bits (one writer: the thread computing the grid).
 inline void markFinal(std::uint8_t* bits, std::size_t i) {
   std::uint8_t* b = bits + (i >> 3);
@@ -366,7 +371,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
   const std::size_t nm = kind.move_offsets.size();
   const std::int64_t* off = kind.move_offsets.data();
   std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
-  const std::size_t reach = static_cast<std::size_t>(kind.reach) * (width_ + 5);
+  const std::size_t reach = writeReach(kind);
   // The largest distance settled, kept in a register (stores to dist could alias *max_g).
   std::uint32_t top_g = 0;
   auto done = [&](bool complete) {
@@ -376,10 +381,7 @@ bool HeuristicGridBuilder::dijkstra(const Kind& kind, std::uint32_t* dist, Queue
   for (std::uint32_t pops = 0; !queue.empty();) {
     const auto [key, i] = queue.pop();
     if constexpr (kTracked) {
-      if (key >= progress->stop_key.load(std::memory_order_relaxed)) {
-        progress->stopped_at_key = true;  // the rest is not needed (GoalHeuristics::stopBeyond)
-        return done(true);
-      }
+      if (reachedStopKey(*progress, key)) return done(true);
     }
     if (!settles<kTracked>(bits, dist, key, i)) continue;
     if constexpr (kTracked) coverWritten(*progress, dist, i, reach);
@@ -428,6 +430,7 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
   const std::uint32_t* s_ne = step + 7 * 256;
   std::uint8_t* bits = kTracked ? progress->final_bits.data() : nullptr;
   const GridDirection toward = kTracked ? progress->direction : GridDirection();
+  const std::size_t reach = writeReach(kind);
   const bool directed = kTracked && toward.per_cell > 0;  // else Dijkstra's order, no e
   // The largest distance settled, kept in a register (stores to dist could alias *max_g).
   std::uint32_t top_g = 0;
@@ -452,13 +455,10 @@ bool HeuristicGridBuilder::dijkstraUnrolled(const Kind& kind, std::uint32_t* dis
       if constexpr (kTracked) __builtin_prefetch(bits + (a >> 3));
     }
     if constexpr (kTracked) {
-      if (key >= progress->stop_key.load(std::memory_order_relaxed)) {
-        progress->stopped_at_key = true;  // the rest is not needed (GoalHeuristics::stopBeyond)
-        return done(true);
-      }
+      if (reachedStopKey(*progress, key)) return done(true);
     }
     if (!settles<kTracked>(bits, dist, key, i)) continue;
-    if constexpr (kTracked) coverWritten(*progress, dist, i, 2 * pw + 2);
+    if constexpr (kTracked) coverWritten(*progress, dist, i, reach);
     const std::uint32_t d = decodeDistance(dist[i]);
     top_g = std::max(top_g, d);
     if ((++pops & 4095) == 0 && stop != nullptr && stop->requested()) return done(false);
@@ -554,13 +554,12 @@ bool HeuristicGridBuilder::dijkstraFromGoal(const Kind& kind, int gx, int gy, Di
   const std::uint32_t goal = static_cast<std::uint32_t>(paddedIndex(width_, gx, gy));
   const bool passable = kind.level[goal] != 255;
   if (progress == nullptr) {
-    if (!zeroInSlices(dist, total, stop)) return false;
+    if (!writeInSlices(dist, total, nullptr, stop)) return false;
   } else {
-    progress->final_bits.reset(total / 8 + 1);
-    // Read by the search before they are set: written first for the reason of coverWritten.
-    std::memset(progress->final_bits.data(), 0, progress->final_bits.size());
+    // Written at once (read by the search before they are set: see coverWritten).
+    progress->final_bits.assign(total / 8 + 1, 0);
     progress->cells = total;
-    if (passable) coverWritten(*progress, dist, goal, 2 * static_cast<std::size_t>(pw) + 2);
+    if (passable) coverWritten(*progress, dist, goal, writeReach(kind));
   }
   if (passable) storeDistance(dist, goal, 0);
   if (progress != nullptr) progress->filled.store(true, std::memory_order_release);
@@ -608,27 +607,18 @@ bool HeuristicGridBuilder::run(const Kind& kind, int gx, int gy, DistanceGrid& g
   return complete;
 }
 
-bool HeuristicGridBuilder::zeroInSlices(std::uint32_t* cells, std::size_t count,
-                                        const StopCondition* stop) const {
+bool HeuristicGridBuilder::writeInSlices(std::uint32_t* cells, std::size_t count,
+                                         const std::uint32_t* source,
+                                         const StopCondition* stop) const {
   constexpr std::size_t kSlice = std::size_t{1} << 20;
   for (std::size_t done = 0; done < count; done += kSlice) {
     if (stop != nullptr && stop->requested()) return false;
-    std::memset(cells + done, 0, std::min(kSlice, count - done) * sizeof(std::uint32_t));
-  }
-  return true;
-}
-
-bool HeuristicGridBuilder::copy(ZeroedArray<std::uint32_t>& grid,
-                                const ZeroedArray<std::uint32_t>& source,
-                                const StopCondition* stop) const {
-  // Copied in slices: first touching a big grid's pages takes tens of milliseconds (64 MB on
-  // 4000 x 4000 cells), and a stop must be seen within a few.
-  grid.reset(source.size());
-  constexpr std::size_t kSlice = std::size_t{1} << 20;
-  for (std::size_t done = 0; done < source.size(); done += kSlice) {
-    if (stop != nullptr && stop->requested()) return false;
-    const std::size_t n = std::min(kSlice, source.size() - done);
-    std::copy(source.data() + done, source.data() + done + n, grid.data() + done);
+    const std::size_t n = std::min(kSlice, count - done);
+    if (source != nullptr) {
+      std::copy(source + done, source + done + n, cells + done);
+    } else {
+      std::memset(cells + done, 0, n * sizeof(std::uint32_t));
+    }
   }
   return true;
 }
@@ -679,7 +669,8 @@ bool HeuristicGridBuilder::repairGrid(const Kind& kind, int gx, int gy, const Di
   if (&grid != &old) {
     grid.width = width_;
     grid.height = height_;
-    if (!copy(grid.stored, old.stored, stop)) return false;
+    grid.stored.reset(total);
+    if (!writeInSlices(grid.stored.data(), total, old.stored.data(), stop)) return false;
   }
   std::uint32_t* dist = grid.stored.data();
   const std::uint8_t* level = kind.level.data();

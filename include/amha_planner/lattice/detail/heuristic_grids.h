@@ -100,7 +100,7 @@ struct GridProgress {
   std::size_t written_lo = 0, written_hi = 0, cells = 0;
   /// The last key popped, stored before `abandoned`: a cell not popped then has g + e >= it.
   std::atomic<std::uint32_t> frontier{0};
-  ZeroedArray<std::uint8_t> final_bits;  ///< made before `filled`, then set bit by bit
+  std::vector<std::uint8_t> final_bits;  ///< written before `filled`, then bit by bit
   GridDirection direction;               ///< set before `filled`
 
   /// Whether cell i's distance is final; needs `filled`.
@@ -113,6 +113,11 @@ struct GridProgress {
   /// grid stays a consistent lower bound (min(distance, frontier - e), then max with 0).
   /// `stored`: the grid's cells (encoded, DistanceGrid::stored).
   std::uint32_t read(const std::uint32_t* stored, std::size_t i) const;
+  /// An abandoned grid's value for a cell that is not final, whose e is `e`.
+  std::uint32_t boundBeyond(std::uint32_t e) const {
+    const std::uint32_t f = frontier.load(std::memory_order_relaxed);
+    return f > e ? f - e : 0;
+  }
   /// Waits until the grid is complete; false if it was abandoned.
   bool waitComplete() const;
 };
@@ -142,11 +147,8 @@ struct DistanceGrid {
       return decodeDistance(__atomic_load_n(stored.data() + i, __ATOMIC_RELAXED));
     // Stopped (GridProgress::read's bound), inline: a stopped grid is read so for the whole
     // proof, and the search knows (x, y), which atIndex() would divide out of i.
-    if (progress->abandoned.load(std::memory_order_acquire)) {
-      const std::uint32_t f = progress->frontier.load(std::memory_order_relaxed);
-      const std::uint32_t e = progress->direction.at(x + 2, y + 2);
-      return f > e ? f - e : 0;
-    }
+    if (progress->abandoned.load(std::memory_order_acquire))
+      return progress->boundBeyond(progress->direction.at(x + 2, y + 2));
     return progress->read(stored.data(), i);
   }
   /// Whether every cell is final (then read them with atComplete()): no progress, or its
@@ -158,9 +160,7 @@ struct DistanceGrid {
   }
   /// Whether it was stopped before completion (GridProgress::abandoned): cells not final read as
   /// a lower bound measured toward the search it was computed for, so it is not reused.
-  bool abandoned() const {
-    return progress && progress->abandoned.load(std::memory_order_acquire) && !complete();
-  }
+  bool abandoned() const { return progress && progress->abandoned.load(std::memory_order_acquire); }
   /// Every padded cell's distance as stored (decoded), for comparisons in tests.
   std::vector<std::uint32_t> distances() const;
 };
@@ -297,12 +297,16 @@ class HeuristicGridBuilder {
   bool repairGrid(const Kind& kind, int goal_x, int goal_y, const DistanceGrid& old,
                   const std::vector<CellRect>& changed, DistanceGrid& grid,
                   const StopCondition* stop) const;  // grid may be old
-  /// Writes `count` zeros (kUnreachable, encoded), in slices that check `stop`: a grid computed
-  /// in full is quicker with its pages written in order first.
-  bool zeroInSlices(std::uint32_t* cells, std::size_t count, const StopCondition* stop) const;
-  /// Makes `grid` a copy of `source`, in slices that check `stop`.
-  bool copy(ZeroedArray<std::uint32_t>& grid, const ZeroedArray<std::uint32_t>& source,
-            const StopCondition* stop) const;
+  /// Writes `count` cells from `source`, or zeros (kUnreachable, encoded) if it is null, in
+  /// slices that check `stop`: first touching a big grid's pages takes tens of milliseconds, and
+  /// a grid computed in full is quicker with its pages written in order first.
+  bool writeInSlices(std::uint32_t* cells, std::size_t count, const std::uint32_t* source,
+                     const StopCondition* stop) const;
+  /// How far (padded cells) from a cell popped its moves read and write: kind.reach rows and
+  /// columns.
+  std::size_t writeReach(const Kind& kind) const {
+    return static_cast<std::size_t>(kind.reach) * (width_ + 5);
+  }
   /// Whether a distance on this map could reach the saturation value kUnreachable - 1.
   bool canSaturate(const Kind& kind) const;
   /// The cost of move m from padded cell i (dijkstra()'s relaxation), kUnreachable if blocked.
