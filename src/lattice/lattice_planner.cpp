@@ -19,6 +19,7 @@
 
 #include "amha_planner/lattice/detail/backward_bound.h"
 #include "amha_planner/lattice/detail/displacement_grid.h"
+#include "amha_planner/lattice/detail/goal_reachability.h"
 #include "amha_planner/lattice/detail/goal_tolerance.h"
 #include "amha_planner/lattice/detail/heuristic_grids.h"
 #include "amha_planner/lattice/detail/lattice_problem.h"
@@ -500,6 +501,43 @@ std::string describeEscape(const std::string& collision, const StartEscape& esca
   return collision + buf;
 }
 
+/// True, with `result` saying so, if no valid motion ends in goal state `t` (with any heading:
+/// in any state of its cell) or leaves start state `s`: then no path exists, whatever the map
+/// beyond. Walks only those states, so it costs microseconds; asked before the heuristic grids,
+/// which would otherwise cover the goal's whole free space to find the start cut off (on the
+/// Smac benchmark's 2000 x 2000 random map, 0.06-0.11 s and 12 MB for such a query).
+bool deadEnd(const LatticeGraph& g, const LatticeState& s, const LatticeState& t, bool any_heading,
+             PlanResult* result) {
+  std::vector<LatticeState> goals;
+  for (int h = 0; h < g.numHeadings(); ++h) {
+    if (any_heading || h == t.heading) goals.push_back(LatticeState{t.x, t.y, h});
+  }
+  auto is_start = [&](const LatticeState& v) { return v == s; };
+  auto is_goal = [&](const LatticeState& v) {
+    return v.x == t.x && v.y == t.y && (any_heading || v.heading == t.heading);
+  };
+  // A budget of the seeds alone: any state beyond them means a motion in (or out).
+  std::size_t walked = 0;
+  if (exploreReachable(g, goals, true, is_start, goals.size(), {}, &walked) ==
+      Reachability::kEnclosed) {
+    result->no_path = NoPathProof::kGoalEnclosed;
+    result->no_path_reason = any_heading ? "proven from the goal's side: no valid motion ends in "
+                                           "the goal's cell, at any heading"
+                                         : "proven from the goal's side: no valid motion ends in "
+                                           "the goal's lattice state (cell and heading)";
+  } else if (exploreReachable(g, {s}, false, is_goal, 1, {}, &walked) == Reachability::kEnclosed) {
+    result->no_path = NoPathProof::kStartEnclosed;
+    result->no_path_reason =
+        "proven from the start's side: no valid motion leaves the start's lattice state (cell "
+        "and heading)";
+  } else {
+    return false;
+  }
+  result->enclosed_states = walked;
+  result->search.status = SearchStatus::kNoSolution;
+  return true;
+}
+
 }  // namespace
 
 PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
@@ -556,6 +594,9 @@ PlanResult LatticePlanner::plan(const Pose2D& start, const Pose2D& goal,
                   &t))
     return result;
   result.planned_goal = g.stateToPose(t.x, t.y, t.heading);
+  // (A start in collision begins at its escape's exits instead, which the search's own walk
+  // from the goal asks about.)
+  if (!escape && deadEnd(g, s, t, any_heading, &result)) return result;
   // Algorithms that read only the anchor do not need the inadmissible grids.
   const bool uses_inadmissible = algorithmSpecs(algorithm.algorithm).inadmissible_heuristics &&
                                  algorithm.max_inadmissible > 0 &&

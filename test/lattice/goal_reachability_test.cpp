@@ -223,6 +223,71 @@ TEST(GoalReachability, AnEnclosedStartIsToldFromTheStartsSide) {
   }
 }
 
+// An end that no motion enters or leaves: at the slot's end, the car facing west cannot have
+// arrived (it would have come through the wall), and facing east it cannot leave. Every planner
+// says so before its heuristic grids, whatever the search direction, without a search.
+TEST(GoalReachability, AnEndWithoutAMotionIsToldBeforeTheGrids) {
+  const Pose2D room{1.0, 1.0, 0.0};
+  const Pose2D facing_out{9.425, 3.025, 3.141593}, facing_wall{9.425, 3.025, 0.0};
+  SearchLimits limits;
+  limits.time_limit_s = 20;
+  for (bool backward : {false, true}) {
+    LatticeConfig c = slotCar(true);
+    c.backward_search = backward;
+    LatticePlanner planner(roomWithSlot(), c);
+    for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAStar, Algorithm::kWeightedAStar}) {
+      const PlanResult goal = planner.plan(room, facing_out, defaultConfig(a), limits);
+      ASSERT_EQ(goal.error, QueryError::kNone) << goal.message;
+      EXPECT_FALSE(goal.hasSolution());
+      EXPECT_EQ(goal.search.status, SearchStatus::kNoSolution);
+      EXPECT_EQ(goal.search.expansions, 0u);
+      EXPECT_EQ(goal.heuristic_seconds, 0.0) << "no grid was computed";
+      EXPECT_EQ(goal.no_path, NoPathProof::kGoalEnclosed);
+      EXPECT_EQ(goal.enclosed_states, 1u);
+      EXPECT_EQ(goal.no_path_reason,
+                "proven from the goal's side: no valid motion ends in the goal's lattice state "
+                "(cell and heading)");
+      const PlanResult start = planner.plan(facing_wall, room, defaultConfig(a), limits);
+      ASSERT_EQ(start.error, QueryError::kNone) << start.message;
+      EXPECT_FALSE(start.hasSolution());
+      EXPECT_EQ(start.search.expansions, 0u);
+      EXPECT_EQ(start.heuristic_seconds, 0.0);
+      EXPECT_EQ(start.no_path, NoPathProof::kStartEnclosed);
+      EXPECT_EQ(start.enclosed_states, 1u);
+      EXPECT_EQ(start.no_path_reason,
+                "proven from the start's side: no valid motion leaves the start's lattice state "
+                "(cell and heading)");
+    }
+    // With any goal heading, one heading a motion ends in is enough: the search runs.
+    GoalOptions any;
+    any.any_heading = true;
+    const PlanResult into =
+        planner.plan(room, facing_out, any, defaultConfig(Algorithm::kAmhaStar), limits);
+    EXPECT_TRUE(into.hasSolution()) << into.message;
+    EXPECT_EQ(into.no_path, NoPathProof::kNone);
+  }
+  // What the walk proves, checked by an exhaustive Dijkstra: nothing leaves the wall-facing
+  // state, and the west-facing one is reached from no other state.
+  LatticePlanner planner(roomWithSlot(), slotCar(false));
+  EXPECT_EQ(countReachable(planner.graph(), facing_wall), 1u);
+  const LatticeGraph& g = planner.graph();
+  int gx = 0, gy = 0, gh = 0;
+  ASSERT_TRUE(g.poseToState(facing_out, &gx, &gy, &gh));
+  std::size_t into_goal = 0;
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      for (int h = 0; h < g.numHeadings(); ++h) {
+        for (const LatticeAction* a = g.actionsBegin(h); a != g.actionsEnd(h); ++a) {
+          if (x + a->dx == gx && y + a->dy == gy && a->end_heading == gh &&
+              g.edgeCost(x, y, *a) != kInvalidEdge)
+            ++into_goal;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(into_goal, 0u);
+}
+
 }  // namespace
 }  // namespace lattice
 }  // namespace amha
