@@ -503,9 +503,9 @@ std::string describeEscape(const std::string& collision, const StartEscape& esca
 
 /// True, with `result` saying so, if no valid motion ends in goal state `t` (with any heading:
 /// in any state of its cell) or leaves start state `s`: then no path exists, whatever the map
-/// beyond. Walks only those states, so it costs microseconds; asked before the heuristic grids,
-/// which would otherwise cover the goal's whole free space to find the start cut off (on the
-/// Smac benchmark's 2000 x 2000 random map, 0.06-0.11 s and 12 MB for such a query).
+/// beyond. Walks only those states (their edge tests, nothing more). Asked before the heuristic
+/// grids, which would otherwise cover the goal's whole free space to find the start cut off (on
+/// the Smac benchmark's 2000 x 2000 random map, 0.03-0.10 s and 6-18 MB for such a query).
 bool deadEnd(const LatticeGraph& g, const LatticeState& s, const LatticeState& t, bool any_heading,
              PlanResult* result) {
   std::vector<LatticeState> goals;
