@@ -516,24 +516,23 @@ bool deadEnd(const LatticeGraph& g, const LatticeState& s, const LatticeState& t
   auto is_goal = [&](const LatticeState& v) {
     return v.x == t.x && v.y == t.y && (any_heading || v.heading == t.heading);
   };
-  // A budget of the seeds alone: any state beyond them means a motion in (or out).
+  // A budget of the seeds alone: any state beyond them means a motion in (or out). Told as the
+  // search's own walks are (describeNoPath: a walk from the goal, or from the start as a
+  // backward search's).
+  SearchSummary walk;
+  walk.goal_side_proof = true;
   std::size_t walked = 0;
   if (exploreReachable(g, goals, true, is_start, goals.size(), {}, &walked) ==
       Reachability::kEnclosed) {
-    result->no_path = NoPathProof::kGoalEnclosed;
-    result->no_path_reason = any_heading ? "proven from the goal's side: no valid motion ends in "
-                                           "the goal's cell, at any heading"
-                                         : "proven from the goal's side: no valid motion ends in "
-                                           "the goal's lattice state (cell and heading)";
+    describeNoPath(walk, /*backward=*/false, walked, result);
+    if (any_heading)  // every heading's state is a seed: say it of the cell
+      result->no_path_reason =
+          "proven from the goal's side: no valid motion ends in the goal's cell, at any heading";
   } else if (exploreReachable(g, {s}, false, is_goal, 1, {}, &walked) == Reachability::kEnclosed) {
-    result->no_path = NoPathProof::kStartEnclosed;
-    result->no_path_reason =
-        "proven from the start's side: no valid motion leaves the start's lattice state (cell "
-        "and heading)";
+    describeNoPath(walk, /*backward=*/true, walked, result);
   } else {
     return false;
   }
-  result->enclosed_states = walked;
   result->search.status = SearchStatus::kNoSolution;
   return true;
 }
