@@ -501,11 +501,18 @@ std::string describeEscape(const std::string& collision, const StartEscape& esca
   return collision + buf;
 }
 
-/// True, with `result` saying so, if no valid motion ends in goal state `t` (with any heading:
-/// in any state of its cell) or leaves start state `s`: then no path exists, whatever the map
-/// beyond. Walks only those states (their edge tests, nothing more). Asked before the heuristic
-/// grids, which would otherwise cover the goal's whole free space to find the start cut off (on
-/// the Smac benchmark's 2000 x 2000 random map, 0.03-0.10 s and 6-18 MB for such a query).
+/// How many states deadEnd walks from each end at most: a pocket of a few states (a goal only
+/// a couple of motions enter, a start that can only creep into a corner) is told at once, for
+/// about a thousand edge tests per end on a query that has none.
+constexpr std::size_t kDeadEndStates = 64;
+
+/// True, with `result` saying so, if at most kDeadEndStates lattice states lead to goal state
+/// `t` (with any heading: to any state of its cell) and start state `s` is none of them, or at
+/// most that many can be reached from `s` and the goal is none of them: then no path exists,
+/// whatever the map beyond. Walks only those states (their edge tests, nothing more). Asked
+/// before the heuristic grids, which would otherwise cover the goal's whole free space to find
+/// the start cut off (on the Smac benchmark's 2000 x 2000 random map, 0.03-0.10 s and 6-18 MB
+/// for such a query); larger pockets are left to the search's own walk (goalUnreachable).
 bool deadEnd(const LatticeGraph& g, const LatticeState& s, const LatticeState& t, bool any_heading,
              PlanResult* result) {
   std::vector<LatticeState> goals;
@@ -516,24 +523,25 @@ bool deadEnd(const LatticeGraph& g, const LatticeState& s, const LatticeState& t
   auto is_goal = [&](const LatticeState& v) {
     return v.x == t.x && v.y == t.y && (any_heading || v.heading == t.heading);
   };
-  // A budget of the seeds alone: any state beyond them means a motion in (or out). Told as the
-  // search's own walks are (describeNoPath: a walk from the goal, or from the start as a
-  // backward search's).
+  // Told as the search's own walks are (describeNoPath: a walk from the goal, or from the start
+  // as a backward search's).
   SearchSummary walk;
   walk.goal_side_proof = true;
   std::size_t walked = 0;
-  if (exploreReachable(g, goals, true, is_start, goals.size(), {}, &walked) ==
-      Reachability::kEnclosed) {
+  const std::size_t budget = std::max(kDeadEndStates, goals.size());
+  if (exploreReachable(g, goals, true, is_start, budget, {}, &walked) == Reachability::kEnclosed) {
     describeNoPath(walk, /*backward=*/false, walked, result);
-    if (any_heading)  // every heading's state is a seed: say it of the cell
+    if (any_heading && walked == goals.size())  // only the seeds: say it of the cell
       result->no_path_reason =
           "proven from the goal's side: no valid motion ends in the goal's cell, at any heading";
-  } else if (exploreReachable(g, {s}, false, is_goal, 1, {}, &walked) == Reachability::kEnclosed) {
+  } else if (exploreReachable(g, {s}, false, is_goal, budget, {}, &walked) ==
+             Reachability::kEnclosed) {
     describeNoPath(walk, /*backward=*/true, walked, result);
   } else {
     return false;
   }
   result->search.status = SearchStatus::kNoSolution;
+  result->search.goal_side_proof = true;  // a walk's proof, not a search's
   return true;
 }
 
@@ -878,6 +886,8 @@ const LatticeGraph& LatticePlanner::graph() const { return *impl_->graph; }
 
 const char* heuristicSourceName(HeuristicSource s) {
   switch (s) {
+    case HeuristicSource::kNone:
+      return "none";
     case HeuristicSource::kCached:
       return "cached";
     case HeuristicSource::kComputed:

@@ -371,8 +371,11 @@ lat::PlanResult PlannerServer::search(lat::LatticePlanner& planner, const Planne
   lat::PlanResult result =
       planner.plan(s, g, query.start_options, goal_options, query.config, limits, on_solution);
   if (result.error == lat::QueryError::kNone) {
-    ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id,
-              lat::heuristicSourceName(result.heuristic_source), result.heuristic_seconds);
+    if (result.heuristic_source == lat::HeuristicSource::kNone)
+      ROS_DEBUG("request %u: ended before any heuristic grid was needed", id);
+    else
+      ROS_DEBUG("request %u: heuristic grids %s in %.4f s", id,
+                lat::heuristicSourceName(result.heuristic_source), result.heuristic_seconds);
   }
   return result;
 }

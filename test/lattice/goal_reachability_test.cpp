@@ -102,14 +102,16 @@ TEST(GoalReachability, TheBudgetCountsTheStatesVisited) {
   EXPECT_GE(enclosed, 10);
 }
 
-// A 10 m x 6 m room with a slot 3 cells wide and 2 m deep in its east wall: a car (no turns on
-// the spot, no reverse) that drives in facing east cannot turn round in it, so a goal there
-// facing west has no path, though its cell is reachable.
+// A 7.5 m x 6 m room with a slot 3 cells wide and 12 m deep in its east wall: a car (no turns
+// on the spot, no reverse) that drives in facing east cannot turn round in it, so a goal there
+// facing west has no path, though its cell is reachable. Deep enough that a goal or start in its
+// first metres has more states in its pocket than the planner walks before its grids
+// (deadEnd), and one near its end (from x = 19.2 m; the slot's last cell is at 19.475 m) fewer.
 std::shared_ptr<GridMap> roomWithSlot() {
-  auto m = test::freeMap(200, 120, 0.05);
+  auto m = test::freeMap(400, 120, 0.05);
   for (int y = 0; y < m->height; ++y) {
     for (int x = 150; x < m->width; ++x) {
-      const bool slot = y >= 59 && y <= 61 && x < 190;
+      const bool slot = y >= 59 && y <= 61 && x < 390;
       if (!slot) m->cost[static_cast<std::size_t>(y) * m->width + x] = kLethalCost;
     }
   }
@@ -135,6 +137,34 @@ std::size_t countReachable(const LatticeGraph& g, const Pose2D& from) {
       [&](int cx, int cy, const LatticeAction& a) { return g.edgeCost(cx, cy, a); });
   return static_cast<std::size_t>(
       std::count_if(d.begin(), d.end(), [](Cost v) { return v < kInfiniteCost; }));
+}
+
+// The states from which some path leads to `to` (itself included), by an exhaustive fixed point
+// over every state's every action: no walk involved.
+std::size_t countLeadingTo(const LatticeGraph& g, const LatticeState& to) {
+  std::vector<char> leads(static_cast<std::size_t>(g.width()) * g.height() * g.numHeadings(), 0);
+  leads[stateIndex(g, to.x, to.y, to.heading)] = 1;
+  std::size_t count = 1;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int y = 0; y < g.height(); ++y) {
+      for (int x = 0; x < g.width(); ++x) {
+        for (int h = 0; h < g.numHeadings(); ++h) {
+          char& here = leads[stateIndex(g, x, y, h)];
+          if (here) continue;
+          for (const LatticeAction* a = g.actionsBegin(h); a != g.actionsEnd(h) && !here; ++a) {
+            if (g.edgeCost(x, y, *a) == kInvalidEdge) continue;
+            if (leads[stateIndex(g, x + a->dx, y + a->dy, a->end_heading)]) here = 1;
+          }
+          if (here) {
+            ++count;
+            grew = true;
+          }
+        }
+      }
+    }
+  }
+  return count;
 }
 
 TEST(GoalReachability, APlannerSaysAtOnceThatADeadEndGoalHasNoPath) {
@@ -172,8 +202,9 @@ TEST(GoalReachability, APlannerSaysAtOnceThatADeadEndGoalHasNoPath) {
     EXPECT_LE(out.search.expansions, 32768u) << algorithmName(a);
     EXPECT_TRUE(out.search.goal_side_proof) << algorithmName(a);
     EXPECT_EQ(out.no_path, NoPathProof::kGoalEnclosed) << algorithmName(a);
-    EXPECT_GT(out.enclosed_states, 1u) << algorithmName(a);
+    EXPECT_GT(out.enclosed_states, 64u) << algorithmName(a) << ": more than deadEnd walks";
     EXPECT_LT(out.enclosed_states, 20000u) << algorithmName(a);
+    EXPECT_NE(out.heuristic_source, HeuristicSource::kNone) << "found after the grids";
     EXPECT_EQ(out.no_path_reason,
               "proven from the goal's side: only " + std::to_string(out.enclosed_states) +
                   " lattice states (cell and heading; the goal's own included) lead to the goal, "
@@ -228,7 +259,7 @@ TEST(GoalReachability, AnEnclosedStartIsToldFromTheStartsSide) {
 // says so before its heuristic grids, whatever the search direction, without a search.
 TEST(GoalReachability, AnEndWithoutAMotionIsToldBeforeTheGrids) {
   const Pose2D room{1.0, 1.0, 0.0};
-  const Pose2D facing_out{9.425, 3.025, 3.141593}, facing_wall{9.425, 3.025, 0.0};
+  const Pose2D facing_out{19.425, 3.025, 3.141593}, facing_wall{19.425, 3.025, 0.0};
   SearchLimits limits;
   limits.time_limit_s = 20;
   for (bool backward : {false, true}) {
@@ -242,6 +273,8 @@ TEST(GoalReachability, AnEndWithoutAMotionIsToldBeforeTheGrids) {
       EXPECT_EQ(goal.search.status, SearchStatus::kNoSolution);
       EXPECT_EQ(goal.search.expansions, 0u);
       EXPECT_EQ(goal.heuristic_seconds, 0.0) << "no grid was computed";
+      EXPECT_EQ(goal.heuristic_source, HeuristicSource::kNone);
+      EXPECT_TRUE(goal.search.goal_side_proof);
       EXPECT_EQ(goal.no_path, NoPathProof::kGoalEnclosed);
       EXPECT_EQ(goal.enclosed_states, 1u);
       EXPECT_EQ(goal.no_path_reason,
@@ -286,6 +319,54 @@ TEST(GoalReachability, AnEndWithoutAMotionIsToldBeforeTheGrids) {
     }
   }
   EXPECT_EQ(into_goal, 0u);
+}
+
+// A pocket of a few states near the slot's end: the planner walks them before its grids, in
+// both search directions and for every algorithm, and counts exactly the states an exhaustive
+// fixed point (the goal's) or Dijkstra (the start's) finds.
+TEST(GoalReachability, APocketOfAFewStatesIsToldBeforeTheGrids) {
+  const Pose2D room{1.0, 1.0, 0.0};
+  const Pose2D out_of_end{19.225, 3.025, 3.141593}, into_end{19.225, 3.025, 0.0};
+  LatticePlanner reference(roomWithSlot(), slotCar(false));
+  const LatticeGraph& g = reference.graph();
+  int x = 0, y = 0, h = 0;
+  ASSERT_TRUE(g.poseToState(out_of_end, &x, &y, &h));
+  const std::size_t leading = countLeadingTo(g, LatticeState{x, y, h});
+  const std::size_t reached = countReachable(g, into_end);
+  // More than the end's own state (a motion does enter and leave it), fewer than deadEnd's 64.
+  ASSERT_GT(leading, 1u);
+  ASSERT_LE(leading, 64u);
+  ASSERT_GT(reached, 1u);
+  ASSERT_LE(reached, 64u);
+  SearchLimits limits;
+  limits.time_limit_s = 20;
+  for (bool backward : {false, true}) {
+    LatticeConfig c = slotCar(false);
+    c.backward_search = backward;
+    LatticePlanner planner(roomWithSlot(), c);
+    for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAStar, Algorithm::kAraStar}) {
+      const PlanResult goal = planner.plan(room, out_of_end, defaultConfig(a), limits);
+      ASSERT_EQ(goal.error, QueryError::kNone) << goal.message;
+      EXPECT_EQ(goal.search.status, SearchStatus::kNoSolution) << algorithmName(a);
+      EXPECT_EQ(goal.search.expansions, 0u);
+      EXPECT_TRUE(goal.search.goal_side_proof);
+      EXPECT_EQ(goal.heuristic_source, HeuristicSource::kNone) << "no grid was asked for";
+      EXPECT_EQ(goal.no_path, NoPathProof::kGoalEnclosed);
+      EXPECT_EQ(goal.enclosed_states, leading);
+      EXPECT_EQ(goal.no_path_reason, "proven from the goal's side: only " +
+                                         std::to_string(leading) +
+                                         " lattice states (cell and heading; the goal's own "
+                                         "included) lead to the goal, and the start is none of "
+                                         "them");
+      const PlanResult start = planner.plan(into_end, room, defaultConfig(a), limits);
+      ASSERT_EQ(start.error, QueryError::kNone) << start.message;
+      EXPECT_EQ(start.search.status, SearchStatus::kNoSolution) << algorithmName(a);
+      EXPECT_EQ(start.search.expansions, 0u);
+      EXPECT_EQ(start.heuristic_source, HeuristicSource::kNone);
+      EXPECT_EQ(start.no_path, NoPathProof::kStartEnclosed);
+      EXPECT_EQ(start.enclosed_states, reached);
+    }
+  }
 }
 
 }  // namespace

@@ -92,6 +92,7 @@ enum class NoPathProof {
 
 /// Where a query's heuristic grids came from.
 enum class HeuristicSource {
+  kNone,      ///< none was asked for: the query ended before them (an error, a dead end, a stop)
   kCached,    ///< the cache (or another call computing them at the same time)
   kComputed,  ///< computed for this query
   kRepaired,  ///< repaired from the grids of the planner this one was built from
@@ -108,7 +109,7 @@ struct PlanResult {
   /// computing them (0 when they were cached);
   /// it counts against limits.time_limit_s.
   double heuristic_seconds = 0.0;
-  HeuristicSource heuristic_source = HeuristicSource::kCached;
+  HeuristicSource heuristic_source = HeuristicSource::kNone;
   /// The pose the search plans to: the centre of the goal's cell with the goal's heading bin
   /// or, when a goal tolerance replaced an obstructed goal, that substitute; with any heading,
   /// the heading of the last solution's end (if there is none, the goal's or a collision-free
