@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "amha_planner/lattice/detail/goal_reachability.h"
@@ -254,6 +255,22 @@ TEST(GoalReachability, AnEnclosedStartIsToldFromTheStartsSide) {
   }
 }
 
+// What a refusal before the grids says: no search, no grid, a walk's proof of `proof` over
+// `states` lattice states, in `reason`'s words.
+void expectRefusedBeforeTheGrids(const PlanResult& r, NoPathProof proof, std::size_t states,
+                                 const std::string& reason, const std::string& where) {
+  ASSERT_EQ(r.error, QueryError::kNone) << where << ": " << r.message;
+  EXPECT_FALSE(r.hasSolution()) << where;
+  EXPECT_EQ(r.search.status, SearchStatus::kNoSolution) << where;
+  EXPECT_EQ(r.search.expansions, 0u) << where;
+  EXPECT_TRUE(r.search.goal_side_proof) << where;
+  EXPECT_EQ(r.heuristic_seconds, 0.0) << where << ": no grid was computed";
+  EXPECT_EQ(r.heuristic_source, HeuristicSource::kNone) << where;
+  EXPECT_EQ(r.no_path, proof) << where;
+  EXPECT_EQ(r.enclosed_states, states) << where;
+  EXPECT_EQ(r.no_path_reason, reason) << where;
+}
+
 // An end that no motion enters or leaves: at the slot's end, the car facing west cannot have
 // arrived (it would have come through the wall), and facing east it cannot leave. Every planner
 // says so before its heuristic grids, whatever the search direction, without a search.
@@ -267,29 +284,17 @@ TEST(GoalReachability, AnEndWithoutAMotionIsToldBeforeTheGrids) {
     c.backward_search = backward;
     LatticePlanner planner(roomWithSlot(), c);
     for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAStar, Algorithm::kWeightedAStar}) {
-      const PlanResult goal = planner.plan(room, facing_out, defaultConfig(a), limits);
-      ASSERT_EQ(goal.error, QueryError::kNone) << goal.message;
-      EXPECT_FALSE(goal.hasSolution());
-      EXPECT_EQ(goal.search.status, SearchStatus::kNoSolution);
-      EXPECT_EQ(goal.search.expansions, 0u);
-      EXPECT_EQ(goal.heuristic_seconds, 0.0) << "no grid was computed";
-      EXPECT_EQ(goal.heuristic_source, HeuristicSource::kNone);
-      EXPECT_TRUE(goal.search.goal_side_proof);
-      EXPECT_EQ(goal.no_path, NoPathProof::kGoalEnclosed);
-      EXPECT_EQ(goal.enclosed_states, 1u);
-      EXPECT_EQ(goal.no_path_reason,
-                "proven from the goal's side: no valid motion ends in the goal's lattice state "
-                "(cell and heading)");
-      const PlanResult start = planner.plan(facing_wall, room, defaultConfig(a), limits);
-      ASSERT_EQ(start.error, QueryError::kNone) << start.message;
-      EXPECT_FALSE(start.hasSolution());
-      EXPECT_EQ(start.search.expansions, 0u);
-      EXPECT_EQ(start.heuristic_seconds, 0.0);
-      EXPECT_EQ(start.no_path, NoPathProof::kStartEnclosed);
-      EXPECT_EQ(start.enclosed_states, 1u);
-      EXPECT_EQ(start.no_path_reason,
-                "proven from the start's side: no valid motion leaves the start's lattice state "
-                "(cell and heading)");
+      const std::string where = std::string(algorithmName(a)) + (backward ? ", backward" : "");
+      expectRefusedBeforeTheGrids(
+          planner.plan(room, facing_out, defaultConfig(a), limits), NoPathProof::kGoalEnclosed, 1,
+          "proven from the goal's side: no valid motion ends in the goal's lattice state (cell "
+          "and heading)",
+          where);
+      expectRefusedBeforeTheGrids(
+          planner.plan(facing_wall, room, defaultConfig(a), limits), NoPathProof::kStartEnclosed, 1,
+          "proven from the start's side: no valid motion leaves the start's lattice state (cell "
+          "and heading)",
+          where);
     }
     // With any goal heading, one heading a motion ends in is enough: the search runs.
     GoalOptions any;
@@ -345,26 +350,21 @@ TEST(GoalReachability, APocketOfAFewStatesIsToldBeforeTheGrids) {
     c.backward_search = backward;
     LatticePlanner planner(roomWithSlot(), c);
     for (Algorithm a : {Algorithm::kAmhaStar, Algorithm::kAStar, Algorithm::kAraStar}) {
-      const PlanResult goal = planner.plan(room, out_of_end, defaultConfig(a), limits);
-      ASSERT_EQ(goal.error, QueryError::kNone) << goal.message;
-      EXPECT_EQ(goal.search.status, SearchStatus::kNoSolution) << algorithmName(a);
-      EXPECT_EQ(goal.search.expansions, 0u);
-      EXPECT_TRUE(goal.search.goal_side_proof);
-      EXPECT_EQ(goal.heuristic_source, HeuristicSource::kNone) << "no grid was asked for";
-      EXPECT_EQ(goal.no_path, NoPathProof::kGoalEnclosed);
-      EXPECT_EQ(goal.enclosed_states, leading);
-      EXPECT_EQ(goal.no_path_reason, "proven from the goal's side: only " +
-                                         std::to_string(leading) +
-                                         " lattice states (cell and heading; the goal's own "
-                                         "included) lead to the goal, and the start is none of "
-                                         "them");
-      const PlanResult start = planner.plan(into_end, room, defaultConfig(a), limits);
-      ASSERT_EQ(start.error, QueryError::kNone) << start.message;
-      EXPECT_EQ(start.search.status, SearchStatus::kNoSolution) << algorithmName(a);
-      EXPECT_EQ(start.search.expansions, 0u);
-      EXPECT_EQ(start.heuristic_source, HeuristicSource::kNone);
-      EXPECT_EQ(start.no_path, NoPathProof::kStartEnclosed);
-      EXPECT_EQ(start.enclosed_states, reached);
+      const std::string where = std::string(algorithmName(a)) + (backward ? ", backward" : "");
+      expectRefusedBeforeTheGrids(
+          planner.plan(room, out_of_end, defaultConfig(a), limits), NoPathProof::kGoalEnclosed,
+          leading,
+          "proven from the goal's side: only " + std::to_string(leading) +
+              " lattice states (cell and heading; the goal's own included) lead to the goal, and "
+              "the start is none of them",
+          where);
+      expectRefusedBeforeTheGrids(
+          planner.plan(into_end, room, defaultConfig(a), limits), NoPathProof::kStartEnclosed,
+          reached,
+          "proven from the start's side: only " + std::to_string(reached) +
+              " lattice states (cell and heading; the start's own included) can be reached from "
+              "the start, and the goal is none of them",
+          where);
     }
   }
 }
