@@ -446,10 +446,19 @@ bool MhaEngine::requeuedWithNewKey(StateId s) {
   return true;
 }
 
+namespace {
+// The largest w1 * scale for which a small-key domain's queues are nested buckets (the tiles'
+// weights, 5 down to 1 in halves, are at most 10).
+constexpr double kMaxBucketWeight = 64.0;
+}  // namespace
+
 void MhaEngine::resetQueues(bool dense_keys) {
   const double scale = integer_keys_ ? OpenQueue::bucketScaleFor(w1_) : 0.0;
   OpenQueue::Kind kind = OpenQueue::Kind::kHeap;
-  if (scale > 0 && small_keys_) kind = OpenQueue::Kind::kBuckets;
+  // The nested buckets are indexed by g * scale + (w1 * scale) * h: a hostile w1 that is a
+  // multiple of 1/64 (999.984375) makes that hundreds of millions of buckets even for small h,
+  // gigabytes of bucket headers (the search fuzzer's find). Such iterations keep the heap.
+  if (scale > 0 && small_keys_ && w1_ * scale <= kMaxBucketWeight) kind = OpenQueue::Kind::kBuckets;
   if (scale > 0 && !small_keys_ && dense_keys) kind = OpenQueue::Kind::kKeyBuckets;
   for (auto& q : open_) q.reset(kind, scale);
 }

@@ -190,5 +190,25 @@ TEST(Limits, MemoryCap) {
   }
 }
 
+// A small-key domain (bucket queues) with a hostile weight that is a multiple of 1/64: the
+// nested buckets would be indexed up to (w1 * 64) * h, some 12 million bucket headers (580 MB)
+// for h below 200 (the search fuzzer's find: 3.2 GB). The search keeps the heap instead.
+TEST(Limits, AHugeWeightKeepsSmallKeyQueuesSmall) {
+  testing::ExplicitGraph chain;
+  const int n = 20;
+  chain.adj.resize(n);
+  chain.h.assign(n, {0});
+  for (int s = 0; s + 1 < n; ++s) chain.adj[s].push_back(Edge{static_cast<StateId>(s + 1), 10});
+  for (int s = 0; s < n; ++s) chain.h[s][0] = static_cast<HeuristicValue>(10 * (n - 1 - s));
+  chain.s_goal = n - 1;
+  chain.small_keys = true;
+  PlannerConfig c = defaultConfig(Algorithm::kWeightedAStar);
+  c.w1 = 63999.0 / 64.0;
+  const SearchResult r = makePlanner(c)->search(chain, SearchLimits());
+  ASSERT_TRUE(r.hasSolution());
+  EXPECT_EQ(r.best().cost, 10 * (n - 1));
+  EXPECT_LT(r.peak_memory_bytes, 16u << 20);
+}
+
 }  // namespace
 }  // namespace amha
